@@ -1,0 +1,12 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace tilejet::cli {
+
+// Each group of subcommands registers itself on the top-level app; the action runs from the
+// subcommand's callback and throws on failure (main reports the message and exits non-zero).
+void add_map_commands(CLI::App& app);
+void add_render_commands(CLI::App& app);
+
+}  // namespace tilejet::cli

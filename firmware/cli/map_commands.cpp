@@ -1,0 +1,98 @@
+// tilejet map build | map info
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "tilejet/synth/build.hpp"
+#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/map_file.hpp"
+
+namespace tilejet::cli {
+
+namespace {
+
+struct BuildOptions {
+    std::string exemplar, output;
+    synth::BuildParams params;
+};
+
+// A one-line progress meter, only when stderr is a terminal (logs and CI stay clean).
+synth::BuildProgress terminal_progress() {
+    if (!isatty(STDERR_FILENO)) return {};
+    return [](std::string_view stage, size_t done, size_t total) {
+        std::fprintf(stderr, "\r  %-18.*s %zu/%zu (%3zu%%)", int(stage.size()), stage.data(), done,
+                     total, total ? done * 100 / total : 100);
+        if (done == total) std::fputc('\n', stderr);
+        std::fflush(stderr);
+    };
+}
+
+void run_build(const BuildOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    const cv::Mat exemplar = synth::load_exemplar(o.exemplar);
+    const synth::TextureMap map = synth::build_texture_map(exemplar, o.params, terminal_progress());
+    synth::save_texture_map(map, o.output);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("wrote %s: map %s, cell %dx%d, %zu A + %zu B patches, %ju bytes, %.1f s\n",
+                o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.cell_width,
+                map.cell_height, map.cell_images.front().a.size(), map.cell_images.front().b.size(),
+                uintmax_t(std::filesystem::file_size(o.output)), seconds);
+}
+
+void run_info(const std::string& path) {
+    const synth::TextureMap map = synth::load_texture_map(path);
+    const synth::CellImage& image = map.cell_images.front();
+    nlohmann::ordered_json j;
+    j["map_id"] = map.id_hex();
+    j["format_version"] = synth::kMapFormatVersion;
+    j["cell_width"] = map.cell_width;
+    j["cell_height"] = map.cell_height;
+    j["cell_images"] = map.cell_images.size();
+    j["patches_a"] = image.a.size();
+    j["patches_b"] = image.b.size();
+    j["source_width"] = map.source.cols;
+    j["source_height"] = map.source.rows;
+    j["bytes"] = std::filesystem::file_size(path);
+    j["build"] = {{"seed", map.build.seed},
+                  {"exemplar_width", map.build.exemplar_width},
+                  {"exemplar_height", map.build.exemplar_height},
+                  {"patches_requested", map.build.patches_requested},
+                  {"candidates", map.build.candidates},
+                  {"active_per_cell", map.build.active_per_cell}};
+    std::printf("%s\n", j.dump().c_str());
+}
+
+}  // namespace
+
+void add_map_commands(CLI::App& app) {
+    CLI::App* map = app.add_subcommand("map", "build texture maps and inspect them");
+    map->require_subcommand(1);
+
+    auto build = std::make_shared<BuildOptions>();
+    CLI::App* b = map->add_subcommand("build", "build a texture map from an exemplar photo");
+    b->add_option("EXEMPLAR", build->exemplar, "PNG, JPEG or TIFF exemplar")->required();
+    b->add_option("-o,--output", build->output, "texture map file to write")->required();
+    b->add_option("--cell", build->params.cell_size, "cell size in px (default 128)");
+    b->add_option("--patches", build->params.patches, "patches kept (default 600)");
+    b->add_option("--candidates", build->params.candidates,
+                  "candidate patches searched (default 40 per patch)");
+    b->add_option("--active", build->params.active_per_cell,
+                  "expected active patches per cell, eta * |set| (default 10)");
+    b->add_option("--seed", build->params.seed, "build seed (default 1)");
+    b->add_option("--threads", build->params.threads, "threads (default: all cores)");
+    b->callback([build] { run_build(*build); });
+
+    auto info_path = std::make_shared<std::string>();
+    CLI::App* i = map->add_subcommand("info", "print a texture map's figures as JSON");
+    i->add_option("MAP", *info_path, "texture map file")->required();
+    i->callback([info_path] { run_info(*info_path); });
+}
+
+}  // namespace tilejet::cli

@@ -1,0 +1,31 @@
+#pragma once
+
+// Offline: building a texture map from an exemplar (design.md section 2).
+
+#include <cstdint>
+#include <functional>
+#include <string_view>
+
+#include <opencv2/core/mat.hpp>
+
+#include "tilejet/synth/texture_map.hpp"
+
+namespace tilejet::synth {
+
+struct BuildParams {
+    int cell_size = 0;           // 0: default (128 px, at most the exemplar's smaller side)
+    int patches = 600;           // P: the best P candidates are kept and split into A and B
+    int candidates = 0;          // 0: default (40 * patches)
+    uint64_t seed = 1;
+    int threads = 0;             // 0: all cores; the result never depends on it
+    double active_per_cell = 10; // expected active patches per cell (eta * |set|)
+};
+
+// Reports build progress: a stage name and how far it is (done of total).
+using BuildProgress = std::function<void(std::string_view stage, size_t done, size_t total)>;
+
+// `exemplar` is CV_8UC3 in R,G,B order. Throws SynthError on parameters it cannot honour.
+TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
+                             const BuildProgress& progress = {});
+
+}  // namespace tilejet::synth

@@ -1,0 +1,37 @@
+#pragma once
+
+// The texture map file (design.md section 2.7): magic, format version, a section table, each
+// section zlib-compressed with its length and CRC-32, and the map id (SHA-256 of the content).
+// Loading never trusts the file: a truncated, corrupted or future-version file is a MapFileError
+// whose message names the file and what is wrong with it.
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "tilejet/synth/error.hpp"
+#include "tilejet/synth/texture_map.hpp"
+
+namespace tilejet::synth {
+
+class MapFileError : public SynthError {
+public:
+    using SynthError::SynthError;
+};
+
+inline constexpr uint32_t kMapFormatVersion = 1;
+
+// Computes and sets map.id from the map's content.
+void assign_map_id(TextureMap& map);
+
+std::vector<uint8_t> encode_texture_map(const TextureMap& map);
+// `name` is what error messages call the data (usually the file's path).
+TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string& name);
+
+// Writes atomically (temporary file, then rename) so a crash never leaves half a map.
+void save_texture_map(const TextureMap& map, const std::filesystem::path& path);
+TextureMap load_texture_map(const std::filesystem::path& path);
+
+}  // namespace tilejet::synth

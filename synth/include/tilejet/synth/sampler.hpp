@@ -1,0 +1,68 @@
+#pragma once
+
+// Online: the infinite texture plane of (map, seed), pixel by pixel or region by region
+// (design.md section 3). Both give exactly the same bytes, on any number of threads.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "tilejet/synth/texture_map.hpp"
+
+namespace tilejet::synth {
+
+struct Rgb {
+    uint8_t r, g, b;
+    bool operator==(const Rgb&) const = default;
+};
+
+// A rectangle of the texture plane. Coordinates may be anywhere in [-2^31, 2^31].
+struct Region {
+    int64_t x = 0, y = 0;
+    int width = 0, height = 0;
+};
+
+struct CellIndex {
+    int64_t i = 0, j = 0;
+    bool operator==(const CellIndex&) const = default;
+};
+
+// Samples single pixels. Keeps the active patch sets of the cells it visited last, so scanning
+// neighbouring pixels is cheap; the memo never changes a result. One Sampler per thread.
+class Sampler {
+public:
+    Sampler(const TextureMap& map, uint64_t seed);
+    Rgb sample(int64_t x, int64_t y);
+
+private:
+    struct Memo {
+        bool valid = false;
+        CellIndex cell;
+        std::vector<uint16_t> active;
+    };
+    const std::vector<uint16_t>& active(CellType type, CellIndex cell);
+
+    const TextureMap& map_;
+    uint64_t seed_;
+    static constexpr size_t kMemoSlots = 8;
+    Memo memo_[2][kMemoSlots];
+};
+
+// The patches of `type` shown in cell `cell` for this seed: activated by hash, then overlaps
+// removed. Indices into the cell image's PatchSet, ascending.
+std::vector<uint16_t> active_patches(const TextureMap& map, uint64_t seed, CellType type,
+                                     CellIndex cell);
+
+// Which cell's diamond holds pixel (x, y), for each cell type.
+CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t y);
+
+// Renders `region` as interleaved 8-bit R,G,B rows `stride` bytes apart.
+// `threads` 0 means all cores.
+void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
+                   size_t stride, int threads = 0);
+cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region,
+                      int threads = 0);
+
+}  // namespace tilejet::synth

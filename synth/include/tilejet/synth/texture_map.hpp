@@ -1,0 +1,92 @@
+#pragma once
+
+// The texture map: everything the online sampler needs to compute any pixel of a design's
+// infinite texture plane (design.md section 1). Built once per design by build_texture_map(),
+// stored as one file by save_texture_map(), read back by load_texture_map().
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+namespace tilejet::synth {
+
+// A horizontal run of covered pixels in one row of a patch mask, relative to the mask's
+// bounding box. Region rendering copies runs with memcpy instead of testing bits.
+struct MaskRun {
+    uint16_t row;
+    uint16_t x;
+    uint16_t length;
+};
+
+// One graph-cut patch: a binary mask placed in cell coordinates (relative to the origin of the
+// cell it is shown in; it may hang over the cell's edge but never leaves the cell's diamond)
+// and the source pixel that the mask's top-left corner copies.
+struct Patch {
+    int x = 0, y = 0;          // bounding box top-left, cell coordinates
+    int width = 0, height = 0; // bounding box size
+    int src_x = 0, src_y = 0;  // source pixel shown at the bounding box's top-left
+    float seam_cost = 0;       // largest single edge cost along the patch's cut (lower is better)
+    std::vector<uint8_t> bits; // row-major, one bit per pixel, each row padded to whole bytes
+    std::vector<MaskRun> runs; // derived from bits, sorted by row
+    std::vector<uint32_t> row_runs;  // runs of row r are [row_runs[r], row_runs[r + 1])
+
+    int row_bytes() const { return (width + 7) / 8; }
+    bool covers(int px, int py) const {  // px, py relative to the bounding box
+        return (bits[size_t(py) * size_t(row_bytes()) + size_t(px >> 3)] >> (px & 7)) & 1;
+    }
+    void derive_runs();
+};
+
+// Patches of one cell type (A or B) of one cell image, with the bit matrix of which of
+// them overlap each other when placed in the same cell.
+struct PatchSet {
+    std::vector<Patch> patches;
+    std::vector<uint64_t> overlap_bits;  // n x n, row-major, rows padded to 64-bit words
+    uint64_t activation_threshold = 0;   // patch k of a cell is active when its hash is below this
+
+    size_t size() const { return patches.size(); }
+    size_t overlap_row_words() const { return (patches.size() + 63) / 64; }
+    bool overlaps(size_t a, size_t b) const {
+        return (overlap_bits[a * overlap_row_words() + b / 64] >> (b % 64)) & 1;
+    }
+};
+
+enum class CellType : uint8_t { A = 0, B = 1 };
+
+// A seamless, toroidally wrapping image of one cell's size with its own two patch sets.
+// Today a map holds one; the format and sampler keep room for a Wang set (design.md section 9).
+struct CellImage {
+    cv::Mat rgb;  // CV_8UC3, R,G,B byte order
+    PatchSet a, b;
+    const PatchSet& set(CellType t) const { return t == CellType::A ? a : b; }
+};
+
+// How the map was made; kept in the file so a map can be rebuilt and audited.
+struct BuildRecord {
+    uint64_t seed = 0;
+    int exemplar_width = 0, exemplar_height = 0;
+    int patches_requested = 0;
+    int candidates = 0;
+    double active_per_cell = 10;  // expected active patches per cell: eta = active_per_cell / |set|
+};
+
+struct TextureMap {
+    int cell_width = 0, cell_height = 0;
+    cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from
+    std::vector<CellImage> cell_images;
+    BuildRecord build;
+    std::array<uint8_t, 32> id{};  // SHA-256 of the content; seeds activation hashing
+
+    uint64_t id64() const;       // first 8 bytes of the id, little-endian
+    std::string id_hex() const;  // the full id in hex: the map's name in logs and job records
+};
+
+// Activation threshold for `active_per_cell` expected active patches among `set_size`:
+// eta * 2^64 with eta = active_per_cell / set_size. Computed once at build time and stored in the
+// map, so the sampler compares integers only and never depends on floating point.
+uint64_t activation_threshold(double active_per_cell, size_t set_size);
+
+}  // namespace tilejet::synth

@@ -1,0 +1,197 @@
+#include "tilejet/synth/build.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <chrono>
+#include <thread>
+
+#include "candidate_patch.hpp"
+#include "lab.hpp"
+#include "mix64.hpp"
+#include "patch_overlap.hpp"
+#include "pseudo_biclique.hpp"
+#include "quilting.hpp"
+#include "tilejet/synth/error.hpp"
+#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/map_file.hpp"
+
+namespace tilejet::synth {
+
+namespace {
+
+using namespace detail;
+
+constexpr int kDefaultCellSize = 128;
+constexpr int kCandidatesPerPatch = 40;
+
+// Stream ids keep the random draws of each build stage independent of one another.
+enum Stream : uint64_t { kCellStream = 1, kSourceStream, kCandidateStream, kSplitStream };
+
+void check_params(const BuildParams& p, const cv::Mat& exemplar) {
+    const int smaller = std::min(exemplar.cols, exemplar.rows);
+    if (p.cell_size != 0 && (p.cell_size < 16 || p.cell_size > smaller))
+        throw SynthError("--cell " + std::to_string(p.cell_size) + " must be between 16 and " +
+                         std::to_string(smaller) + " (the exemplar's smaller side)");
+    if (p.patches < 2 || p.patches > 65535)
+        throw SynthError("--patches " + std::to_string(p.patches) + " must be between 2 and 65535");
+    if (p.candidates != 0 && p.candidates < p.patches)
+        throw SynthError("--candidates " + std::to_string(p.candidates) +
+                         " must be at least --patches (" + std::to_string(p.patches) + ")");
+    if (!(p.active_per_cell > 0)) throw SynthError("active patches per cell must be positive");
+    if (p.threads < 0) throw SynthError("--threads must not be negative");
+}
+
+// Runs body(i) for i in [0, n) on `threads` threads; reports progress from the calling thread.
+template <typename Body>
+void parallel_for(size_t n, int threads, Body body, const BuildProgress& progress,
+                  std::string_view stage) {
+    std::atomic<size_t> next{0}, done{0};
+    std::vector<std::jthread> workers;
+    for (int t = 0; t < threads; ++t)
+        workers.emplace_back([&, t] {
+            for (size_t i; (i = next.fetch_add(1)) < n;) {
+                body(i, t);
+                done.fetch_add(1);
+            }
+        });
+    if (progress)
+        while (done.load() < n) {
+            progress(stage, done.load(), n);
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
+    workers.clear();
+    if (progress) progress(stage, n, n);
+}
+
+std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParams& params,
+                                   int candidates, int threads, const BuildProgress& progress) {
+    std::vector<std::optional<Patch>> found(static_cast<size_t>(candidates));
+    const uint64_t stream = hash_combine(params.seed, kCandidateStream);
+    parallel_for(
+        found.size(), threads,
+        [&](size_t i, int) {
+            found[i] = make_candidate(space, hash_combine(stream, i));
+        },
+        progress, "candidate patches");
+
+    // Best P by seam cost alone would keep only tiny patches in flat areas (short cuts there
+    // are cheap) and leave the cell image showing almost everywhere. So candidates are ranked
+    // within size classes (log-spaced by patch side) and each class keeps its share of the best:
+    // the kept patches span sizes from a few pixels to about a third of the cell.
+    constexpr int kSizeClasses = 6;
+    std::vector<std::vector<Patch>> classes(kSizeClasses);
+    const double log_min = std::log(2.0), log_max = std::log(3.0 * space.max_radius + 1);
+    for (auto& f : found) {
+        if (!f) continue;
+        const double side = std::log(double(std::max(f->width, f->height)));
+        const int c = std::clamp(int((side - log_min) / (log_max - log_min) * kSizeClasses), 0,
+                                 kSizeClasses - 1);
+        classes[size_t(c)].push_back(std::move(*f));
+    }
+    // Stable sorts: equal seam costs keep candidate order, so threads never change the result.
+    auto by_cost = [](const Patch& a, const Patch& b) { return a.seam_cost < b.seam_cost; };
+    std::vector<Patch> kept, spare;
+    for (int c = 0; c < kSizeClasses; ++c) {
+        auto& members = classes[size_t(c)];
+        std::stable_sort(members.begin(), members.end(), by_cost);
+        // Larger classes get larger shares (1 : 2 : ... : 6): they carry most of the variety.
+        constexpr size_t kWeights = kSizeClasses * (kSizeClasses + 1) / 2;
+        const size_t before = size_t(c) * size_t(c + 1) / 2, upto = before + size_t(c + 1);
+        const size_t share = size_t(params.patches) * upto / kWeights -
+                             size_t(params.patches) * before / kWeights;
+        for (size_t i = 0; i < members.size(); ++i)
+            (i < share ? kept : spare).push_back(std::move(members[i]));
+    }
+    // Classes short of candidates leave room for the best of the rest.
+    std::stable_sort(spare.begin(), spare.end(), by_cost);
+    for (size_t i = 0; kept.size() < size_t(params.patches) && i < spare.size(); ++i)
+        kept.push_back(std::move(spare[i]));
+    return kept;
+}
+
+PatchSet make_set(const std::vector<Patch>& all, const std::vector<size_t>& members,
+                  double active_per_cell) {
+    PatchSet set;
+    for (size_t m : members) set.patches.push_back(all[m]);
+    const size_t n = set.size(), words = set.overlap_row_words();
+    set.overlap_bits.assign(n * words, 0);
+    for (size_t a = 0; a < n; ++a)
+        for (size_t b = a + 1; b < n; ++b)
+            if (patches_overlap(set.patches[a], set.patches[b], 0, 0)) {
+                set.overlap_bits[a * words + b / 64] |= uint64_t(1) << (b % 64);
+                set.overlap_bits[b * words + a / 64] |= uint64_t(1) << (a % 64);
+            }
+    set.activation_threshold = activation_threshold(active_per_cell, n);
+    return set;
+}
+
+}  // namespace
+
+TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
+                             const BuildProgress& progress) {
+    check_exemplar(exemplar, "exemplar");
+    check_params(params, exemplar);
+    const int threads =
+        params.threads > 0 ? params.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int cell = params.cell_size ? params.cell_size
+                                      : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
+    const int candidates = params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
+
+    TextureMap map;
+    map.cell_width = map.cell_height = cell;
+    map.build = {params.seed, exemplar.cols, exemplar.rows, params.patches, candidates,
+                 params.active_per_cell};
+
+    const cv::Mat exemplar_lab = to_lab(exemplar);
+    const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6)};
+    if (progress) progress("cell image", 0, 1);
+    Rng cell_rng(hash_combine(params.seed, kCellStream));
+    CellImage image;
+    image.rgb = quilt_toroidal(exemplar, exemplar_lab, {cell, cell}, quilt, cell_rng);
+
+    // Patches need room around them in the source; small exemplars are enlarged first.
+    if (exemplar.cols < 2 * cell || exemplar.rows < 2 * cell) {
+        if (progress) progress("source image", 0, 1);
+        Rng source_rng(hash_combine(params.seed, kSourceStream));
+        map.source = quilt_toroidal(exemplar, exemplar_lab,
+                                    {std::max(exemplar.cols, 2 * cell), std::max(exemplar.rows, 2 * cell)},
+                                    quilt, source_rng);
+    } else {
+        map.source = exemplar.clone();
+    }
+
+    const cv::Mat cell_lab = to_lab(image.rgb), source_lab = to_lab(map.source);
+    const int source_side = std::min(map.source.cols, map.source.rows);
+    CandidateSpace space{cell_lab, source_lab, CellGrid(cell, cell), 2,
+                         std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3))};
+    const std::vector<Patch> kept = best_candidates(space, params, candidates, threads, progress);
+
+    // Which pairs may not be split across A and B: a B cell sits left, right, above or below
+    // every A cell, so a conflict is an overlap in any of those four placements.
+    const size_t n = kept.size();
+    std::vector<uint8_t> conflict(n * n, 0);
+    parallel_for(
+        n, threads,
+        [&](size_t u, int) {
+            for (size_t v = 0; v < n; ++v)
+                conflict[u * n + v] = patches_overlap(kept[u], kept[v], cell, 0) ||
+                                      patches_overlap(kept[u], kept[v], -cell, 0) ||
+                                      patches_overlap(kept[u], kept[v], 0, cell) ||
+                                      patches_overlap(kept[u], kept[v], 0, -cell);
+        },
+        progress, "A/B conflicts");
+    Rng split_rng(hash_combine(params.seed, kSplitStream));
+    const BicliqueSplit split = split_pseudo_biclique(n, conflict, split_rng);
+    if (split.a.empty() || split.b.empty())
+        throw SynthError("could not split the patches into two non-overlapping sets; "
+                         "try more --patches or a larger --cell");
+
+    image.a = make_set(kept, split.a, params.active_per_cell);
+    image.b = make_set(kept, split.b, params.active_per_cell);
+    map.cell_images.push_back(std::move(image));
+    assign_map_id(map);
+    return map;
+}
+
+}  // namespace tilejet::synth

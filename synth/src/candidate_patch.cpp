@@ -1,0 +1,124 @@
+#include "candidate_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/imgproc/detail/gcgraph.hpp>
+
+#include "mix64.hpp"
+
+namespace tilejet::synth::detail {
+
+namespace {
+
+constexpr float kForced = 1e9f;
+// Added to every edge so that, where cell image and source agree exactly, the cut still
+// prefers the shortest boundary instead of an arbitrary one.
+constexpr float kEdgeFloor = 1e-3f;
+
+float lab_distance(const cv::Vec3f& a, const cv::Vec3f& b) {
+    const cv::Vec3f d = a - b;
+    return std::sqrt(d.dot(d));
+}
+
+}  // namespace
+
+std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) {
+    Rng rng(seed);
+    const double lo = std::log(double(space.min_radius)), hi = std::log(double(space.max_radius));
+    const int r = int(std::lround(std::exp(lo + (hi - lo) * rng.unit())));
+    // r is the patch's nominal half-width: the forced core spans about 1.4 r, the window 3 r,
+    // and the cut settles in between.
+    const int core = std::max(1, int(std::lround(0.7 * r)));
+    const int R = int(std::ceil(1.5 * r)) + 2;
+    const int side = 2 * R + 1;
+    const cv::Mat& src = space.source_lab;
+    const cv::Mat& cell = space.cell_lab;
+    if (src.cols < side || src.rows < side) return std::nullopt;
+
+    // p: a position in the cell's own square. Patches centred there stay mostly inside it, and
+    // A and B squares form a checkerboard, so few patches conflict across the A/B split. The
+    // core must still lie inside the cell's diamond.
+    const int cw = int(space.grid.cell_width()), ch = int(space.grid.cell_height());
+    int px = 0, py = 0;
+    bool placed = false;
+    for (int attempt = 0; attempt < 16 && !placed; ++attempt) {
+        px = rng.range(0, cw - 1);
+        py = rng.range(0, ch - 1);
+        placed = space.grid.in_diamond_interior(px - core, py - core) &&
+                 space.grid.in_diamond_interior(px + core, py - core) &&
+                 space.grid.in_diamond_interior(px - core, py + core) &&
+                 space.grid.in_diamond_interior(px + core, py + core);
+    }
+    if (!placed) return std::nullopt;
+    const int qx = rng.range(R, src.cols - 1 - R), qy = rng.range(R, src.rows - 1 - R);
+
+    // Per-pixel disagreement between the cell image (wrapped) and the source under the window.
+    std::vector<float> diff(static_cast<size_t>(side) * side);
+    for (int dy = -R; dy <= R; ++dy) {
+        const int cy = int(floor_mod(py + dy, ch));
+        for (int dx = -R; dx <= R; ++dx) {
+            const int cx = int(floor_mod(px + dx, cw));
+            diff[size_t(dy + R) * side + size_t(dx + R)] =
+                lab_distance(cell.at<cv::Vec3f>(cy, cx), src.at<cv::Vec3f>(qy + dy, qx + dx));
+        }
+    }
+    auto node = [side](int x, int y) { return y * side + x; };
+    auto weight = [&](int a, int b) { return diff[size_t(a)] + diff[size_t(b)] + kEdgeFloor; };
+
+    // GCGraph cannot be cleared for reuse, so every candidate gets its own.
+    cv::detail::GCGraph<float> graph(unsigned(side * side), unsigned(2 * 2 * side * side));
+    for (int i = 0; i < side * side; ++i) graph.addVtx();
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const int n = node(x, y);
+            if (x + 1 < side) {
+                const float w = weight(n, node(x + 1, y));
+                graph.addEdges(n, node(x + 1, y), w, w);
+            }
+            if (y + 1 < side) {
+                const float w = weight(n, node(x, y + 1));
+                graph.addEdges(n, node(x, y + 1), w, w);
+            }
+            const int dx = x - R, dy = y - R;
+            const bool rim = x == 0 || y == 0 || x == side - 1 || y == side - 1;
+            if (rim || !space.grid.in_diamond_interior(px + dx, py + dy))
+                graph.addTermWeights(n, 0, kForced);
+            else if (std::abs(dx) <= core && std::abs(dy) <= core)
+                graph.addTermWeights(n, kForced, 0);
+        }
+    graph.maxFlow();
+
+    std::vector<uint8_t> in(static_cast<size_t>(side) * side);
+    int x0 = side, y0 = side, x1 = -1, y1 = -1;
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            if ((in[size_t(node(x, y))] = graph.inSourceSegment(node(x, y)) ? 1 : 0)) {
+                x0 = std::min(x0, x), x1 = std::max(x1, x);
+                y0 = std::min(y0, y), y1 = std::max(y1, y);
+            }
+    if (x1 < 0) return std::nullopt;
+
+    Patch p;
+    p.x = px - R + x0, p.y = py - R + y0;
+    p.src_x = qx - R + x0, p.src_y = qy - R + y0;
+    p.width = x1 - x0 + 1, p.height = y1 - y0 + 1;
+    p.bits.assign(size_t(p.height) * size_t(p.row_bytes()), 0);
+    float seam = 0;
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            const int n = node(x, y);
+            if (!in[size_t(n)]) continue;
+            p.bits[size_t(y - y0) * size_t(p.row_bytes()) + size_t((x - x0) >> 3)] |=
+                uint8_t(1u << ((x - x0) & 7));
+            const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+            for (const auto& q : nb)  // the rim is never in, so neighbours exist
+                if (!in[size_t(node(q[0], q[1]))]) seam = std::max(seam, weight(n, node(q[0], q[1])));
+        }
+    p.seam_cost = seam;
+    p.derive_runs();
+    return p;
+}
+
+}  // namespace tilejet::synth::detail

@@ -1,0 +1,56 @@
+#include "tilejet/synth/exemplar.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tilejet/synth/error.hpp"
+
+namespace tilejet::synth {
+
+void check_exemplar(const cv::Mat& rgb, const std::string& name) {
+    if (rgb.empty()) throw SynthError("exemplar '" + name + "' is empty");
+    if (rgb.type() != CV_8UC3)
+        throw SynthError("exemplar '" + name + "' is not 8-bit RGB in memory");
+    if (rgb.cols < kMinExemplarSide || rgb.rows < kMinExemplarSide)
+        throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
+                         std::to_string(rgb.rows) + " px; a texture needs at least " +
+                         std::to_string(kMinExemplarSide) + "x" +
+                         std::to_string(kMinExemplarSide) + " px");
+    if (int64_t(rgb.cols) * rgb.rows > kMaxExemplarPixels)
+        throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
+                         std::to_string(rgb.rows) + " px; texture maps take exemplars up to " +
+                         std::to_string(kMaxExemplarPixels >> 20) +
+                         " Mpx (e.g. 4096x4096): crop or scale it first");
+}
+
+cv::Mat load_exemplar(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe)
+            throw SynthError("cannot read exemplar '" + name + "': " + std::strerror(errno));
+        if (probe.peek() == std::ifstream::traits_type::eof())
+            throw SynthError("exemplar '" + name + "' is an empty file");
+    }
+    // IMREAD_COLOR turns grey and 16-bit images into 8-bit three-channel ones and drops alpha.
+    cv::Mat bgr;
+    try {
+        bgr = cv::imread(name, cv::IMREAD_COLOR);
+    } catch (const cv::Exception& e) {
+        throw SynthError("cannot decode exemplar '" + name + "': " + e.what());
+    }
+    if (bgr.empty())
+        throw SynthError("cannot decode exemplar '" + name +
+                         "': not a PNG, JPEG or TIFF image, damaged, or too large to decode");
+    cv::Mat rgb;
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    check_exemplar(rgb, name);
+    return rgb;
+}
+
+}  // namespace tilejet::synth

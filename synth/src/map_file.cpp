@@ -1,0 +1,410 @@
+#include "tilejet/synth/map_file.hpp"
+
+#include <openssl/evp.h>
+#include <zlib.h>
+
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <unistd.h>
+
+#include "diamond.hpp"
+
+namespace tilejet::synth {
+
+namespace {
+
+// File layout (all integers little-endian):
+//   header  : magic[8] "TJMAP\r\n\x1a", u32 version, u32 section count, u64 file length,
+//             u32 CRC-32 of the section table, u32 reserved (0)
+//   table   : per section: tag[4], u32 index, u64 offset, u32 stored length, u32 raw length,
+//             u32 CRC-32 of the stored bytes, u32 flags (bit 0: zlib-compressed)
+//   payloads: back to back.
+// The magic's CR LF and ^Z catch text-mode transfers, as PNG's does.
+constexpr char kMagic[8] = {'T', 'J', 'M', 'A', 'P', '\r', '\n', '\x1a'};
+constexpr size_t kHeaderBytes = 32, kEntryBytes = 32;
+constexpr uint32_t kFlagZlib = 1;
+constexpr uint32_t kMaxSections = 4096;
+constexpr uint32_t kMaxRawSection = 256u << 20;
+constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
+
+struct Section {
+    std::string tag;  // four characters
+    uint32_t index = 0;
+    std::vector<uint8_t> raw;
+};
+
+class Writer {
+public:
+    std::vector<uint8_t> bytes;
+    void u8s(const void* p, size_t n) {
+        auto b = static_cast<const uint8_t*>(p);
+        bytes.insert(bytes.end(), b, b + n);
+    }
+    template <typename T>
+    void le(T v) {
+        auto u = std::bit_cast<std::make_unsigned_t<T>>(v);
+        for (size_t i = 0; i < sizeof(T); ++i) bytes.push_back(uint8_t(u >> (8 * i)));
+    }
+    void f32(float v) { le(std::bit_cast<uint32_t>(v)); }
+    void f64(double v) { le(std::bit_cast<uint64_t>(v)); }
+};
+
+// Bounds-checked reads; every failure names the file, the section and what was being read.
+class Reader {
+public:
+    Reader(std::span<const uint8_t> data, std::string where) : data_(data), where_(std::move(where)) {}
+    template <typename T>
+    T le(const char* what) {
+        need(sizeof(T), what);
+        std::make_unsigned_t<T> u = 0;
+        for (size_t i = 0; i < sizeof(T); ++i) u |= std::make_unsigned_t<T>(data_[pos_ + i]) << (8 * i);
+        pos_ += sizeof(T);
+        return std::bit_cast<T>(u);
+    }
+    float f32(const char* what) { return std::bit_cast<float>(le<uint32_t>(what)); }
+    double f64(const char* what) { return std::bit_cast<double>(le<uint64_t>(what)); }
+    std::span<const uint8_t> take(size_t n, const char* what) {
+        need(n, what);
+        auto s = data_.subspan(pos_, n);
+        pos_ += n;
+        return s;
+    }
+    void done() const {
+        if (pos_ != data_.size())
+            throw MapFileError(where_ + ": " + std::to_string(data_.size() - pos_) +
+                               " unexpected bytes at the end");
+    }
+    [[noreturn]] void fail(const std::string& why) const { throw MapFileError(where_ + ": " + why); }
+
+private:
+    void need(size_t n, const char* what) const {
+        if (data_.size() - pos_ < n) fail(std::string("ends before ") + what);
+    }
+    std::span<const uint8_t> data_;
+    std::string where_;
+    size_t pos_ = 0;
+};
+
+uint32_t crc_of(std::span<const uint8_t> b) {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    // zlib takes uInt lengths; sections are far below 4 GiB.
+    return uint32_t(crc32(crc, b.data(), uInt(b.size())));
+}
+
+void write_image(Writer& w, const cv::Mat& rgb) {
+    w.le<uint32_t>(uint32_t(rgb.cols));
+    w.le<uint32_t>(uint32_t(rgb.rows));
+    for (int r = 0; r < rgb.rows; ++r) w.u8s(rgb.ptr(r), size_t(rgb.cols) * 3);
+}
+
+cv::Mat read_image(Reader& r, int max_side) {
+    const auto w = r.le<uint32_t>("image width"), h = r.le<uint32_t>("image height");
+    if (w == 0 || h == 0 || w > uint32_t(max_side) || h > uint32_t(max_side))
+        r.fail("image size " + std::to_string(w) + "x" + std::to_string(h) + " is out of range");
+    auto px = r.take(size_t(w) * h * 3, "image pixels");
+    cv::Mat rgb(int(h), int(w), CV_8UC3);
+    std::memcpy(rgb.data, px.data(), px.size());
+    return rgb;
+}
+
+void write_patches(Writer& w, const PatchSet& set) {
+    w.le<uint32_t>(uint32_t(set.size()));
+    w.le<uint64_t>(set.activation_threshold);
+    for (const Patch& p : set.patches) {
+        w.le<int32_t>(p.x), w.le<int32_t>(p.y);
+        w.le<uint32_t>(uint32_t(p.width)), w.le<uint32_t>(uint32_t(p.height));
+        w.le<int32_t>(p.src_x), w.le<int32_t>(p.src_y);
+        w.f32(p.seam_cost);
+        w.u8s(p.bits.data(), p.bits.size());
+    }
+}
+
+bool runs_inside_diamond(const Patch& p, const detail::CellGrid& grid) {
+    // Diamonds are convex: a run is inside when both its ends are.
+    for (const MaskRun& run : p.runs) {
+        const int64_t y = p.y + run.row, xa = p.x + run.x, xb = p.x + run.x + run.length - 1;
+        if (!grid.in_diamond_interior(xa, y) || !grid.in_diamond_interior(xb, y)) return false;
+    }
+    return true;
+}
+
+PatchSet read_patches(Reader& r, const TextureMap& map) {
+    PatchSet set;
+    const auto n = r.le<uint32_t>("patch count");
+    if (n > 65535) r.fail("patch count " + std::to_string(n) + " is over 65535");
+    set.activation_threshold = r.le<uint64_t>("activation threshold");
+    const detail::CellGrid grid(map.cell_width, map.cell_height);
+    set.patches.resize(n);
+    for (uint32_t k = 0; k < n; ++k) {
+        Patch& p = set.patches[k];
+        p.x = r.le<int32_t>("patch x"), p.y = r.le<int32_t>("patch y");
+        const auto w = r.le<uint32_t>("patch width"), h = r.le<uint32_t>("patch height");
+        p.src_x = r.le<int32_t>("patch source x"), p.src_y = r.le<int32_t>("patch source y");
+        p.seam_cost = r.f32("patch seam cost");
+        const std::string which = "patch " + std::to_string(k);
+        if (w == 0 || h == 0 || w > uint32_t(2 * map.cell_width) || h > uint32_t(2 * map.cell_height))
+            r.fail(which + " has size " + std::to_string(w) + "x" + std::to_string(h));
+        p.width = int(w), p.height = int(h);
+        if (p.src_x < 0 || p.src_y < 0 || int64_t(p.src_x) + p.width > map.source.cols ||
+            int64_t(p.src_y) + p.height > map.source.rows)
+            r.fail(which + " copies from outside the source image");
+        auto bits = r.take(size_t(p.height) * size_t(p.row_bytes()), "patch mask");
+        p.bits.assign(bits.begin(), bits.end());
+        p.derive_runs();
+        if (!runs_inside_diamond(p, grid)) r.fail(which + " leaves its cell's diamond");
+    }
+    return set;
+}
+
+void write_overlaps(Writer& w, const PatchSet& set) {
+    w.le<uint32_t>(uint32_t(set.size()));
+    for (uint64_t word : set.overlap_bits) w.le<uint64_t>(word);
+}
+
+void read_overlaps(Reader& r, PatchSet& set) {
+    const auto n = r.le<uint32_t>("overlap matrix size");
+    if (n != set.size())
+        r.fail("overlap matrix is for " + std::to_string(n) + " patches, the set has " +
+               std::to_string(set.size()));
+    set.overlap_bits.resize(set.size() * set.overlap_row_words());
+    for (uint64_t& word : set.overlap_bits) word = r.le<uint64_t>("overlap bits");
+}
+
+std::vector<Section> content_sections(const TextureMap& map) {
+    std::vector<Section> out;
+    {
+        Writer w;
+        w.le<uint32_t>(uint32_t(map.cell_width)), w.le<uint32_t>(uint32_t(map.cell_height));
+        w.le<uint32_t>(uint32_t(map.cell_images.size()));
+        w.le<uint64_t>(map.build.seed);
+        w.le<uint32_t>(uint32_t(map.build.exemplar_width));
+        w.le<uint32_t>(uint32_t(map.build.exemplar_height));
+        w.le<uint32_t>(uint32_t(map.build.patches_requested));
+        w.le<uint32_t>(uint32_t(map.build.candidates));
+        w.f64(map.build.active_per_cell);
+        out.push_back({"META", 0, std::move(w.bytes)});
+    }
+    {
+        Writer w;
+        write_image(w, map.source);
+        out.push_back({"SRCE", 0, std::move(w.bytes)});
+    }
+    for (size_t t = 0; t < map.cell_images.size(); ++t) {
+        const CellImage& c = map.cell_images[t];
+        Writer img, pa, pb, oa, ob;
+        write_image(img, c.rgb);
+        write_patches(pa, c.a), write_patches(pb, c.b);
+        write_overlaps(oa, c.a), write_overlaps(ob, c.b);
+        out.push_back({"CELL", uint32_t(t), std::move(img.bytes)});
+        out.push_back({"PATA", uint32_t(t), std::move(pa.bytes)});
+        out.push_back({"PATB", uint32_t(t), std::move(pb.bytes)});
+        out.push_back({"OVLA", uint32_t(t), std::move(oa.bytes)});
+        out.push_back({"OVLB", uint32_t(t), std::move(ob.bytes)});
+    }
+    return out;
+}
+
+std::array<uint8_t, 32> content_hash(const std::vector<Section>& sections) {
+    std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+    if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
+        throw SynthError("OpenSSL SHA-256 is unavailable");
+    for (const Section& s : sections) {
+        Writer w;
+        w.u8s(s.tag.data(), 4);
+        w.le<uint32_t>(s.index);
+        w.le<uint64_t>(s.raw.size());
+        EVP_DigestUpdate(ctx.get(), w.bytes.data(), w.bytes.size());
+        EVP_DigestUpdate(ctx.get(), s.raw.data(), s.raw.size());
+    }
+    std::array<uint8_t, 32> out{};
+    unsigned int len = 0;
+    EVP_DigestFinal_ex(ctx.get(), out.data(), &len);
+    return out;
+}
+
+std::vector<uint8_t> deflate_bytes(const std::vector<uint8_t>& raw) {
+    uLongf len = compressBound(uLong(raw.size()));
+    std::vector<uint8_t> out(len);
+    if (compress2(out.data(), &len, raw.data(), uLong(raw.size()), 6) != Z_OK)
+        throw SynthError("zlib could not compress a map section");
+    out.resize(len);
+    return out;
+}
+
+}  // namespace
+
+void assign_map_id(TextureMap& map) { map.id = content_hash(content_sections(map)); }
+
+std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
+    std::vector<Section> sections = content_sections(map);
+    sections.push_back({"IDNT", 0, std::vector<uint8_t>(map.id.begin(), map.id.end())});
+
+    std::vector<std::vector<uint8_t>> stored;
+    for (const Section& s : sections) stored.push_back(deflate_bytes(s.raw));
+
+    Writer table;
+    uint64_t offset = kHeaderBytes + kEntryBytes * sections.size();
+    for (size_t i = 0; i < sections.size(); ++i) {
+        table.u8s(sections[i].tag.data(), 4);
+        table.le<uint32_t>(sections[i].index);
+        table.le<uint64_t>(offset);
+        table.le<uint32_t>(uint32_t(stored[i].size()));
+        table.le<uint32_t>(uint32_t(sections[i].raw.size()));
+        table.le<uint32_t>(crc_of(stored[i]));
+        table.le<uint32_t>(kFlagZlib);
+        offset += stored[i].size();
+    }
+    Writer out;
+    out.u8s(kMagic, sizeof kMagic);
+    out.le<uint32_t>(kMapFormatVersion);
+    out.le<uint32_t>(uint32_t(sections.size()));
+    out.le<uint64_t>(offset);
+    out.le<uint32_t>(crc_of(table.bytes));
+    out.le<uint32_t>(0);
+    out.u8s(table.bytes.data(), table.bytes.size());
+    for (const auto& s : stored) out.u8s(s.data(), s.size());
+    return std::move(out.bytes);
+}
+
+TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string& name) {
+    const std::string where = "texture map '" + name + "'";
+    const Reader whole(bytes, where);
+    auto fail = [&](const std::string& why) { whole.fail(why); };
+
+    if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+        fail("not a tilejet texture map (wrong magic)");
+    Reader header(bytes.first(std::min(bytes.size(), kHeaderBytes)), where + " header");
+    header.take(sizeof kMagic, "magic");
+    const auto version = header.le<uint32_t>("format version");
+    if (version > kMapFormatVersion)
+        fail("format version " + std::to_string(version) + " is newer than this tilejet reads (" +
+             std::to_string(kMapFormatVersion) + "); update tilejet or rebuild the map");
+    if (version == 0) fail("format version 0 is invalid");
+    const auto count = header.le<uint32_t>("section count");
+    const auto length = header.le<uint64_t>("file length");
+    const auto table_crc = header.le<uint32_t>("section table checksum");
+    if (length != bytes.size())
+        fail(length > bytes.size() ? "truncated: " + std::to_string(bytes.size()) + " of " +
+                                         std::to_string(length) + " bytes present"
+                                   : std::to_string(bytes.size() - length) +
+                                         " bytes of trailing data after the map");
+    if (count == 0 || count > kMaxSections) fail("section count " + std::to_string(count) + " is invalid");
+    if (bytes.size() < kHeaderBytes + size_t(count) * kEntryBytes) fail("truncated section table");
+    auto table_bytes = bytes.subspan(kHeaderBytes, size_t(count) * kEntryBytes);
+    if (crc_of(table_bytes) != table_crc) fail("section table is corrupted (checksum mismatch)");
+
+    std::map<std::pair<std::string, uint32_t>, std::vector<uint8_t>> raw;
+    std::vector<Section> ordered;
+    Reader table(table_bytes, where + " section table");
+    for (uint32_t s = 0; s < count; ++s) {
+        auto tag_bytes = table.take(4, "section tag");
+        std::string tag(tag_bytes.begin(), tag_bytes.end());
+        const auto index = table.le<uint32_t>("section index");
+        const auto offset = table.le<uint64_t>("section offset");
+        const auto stored = table.le<uint32_t>("section length");
+        const auto raw_len = table.le<uint32_t>("section raw length");
+        const auto crc = table.le<uint32_t>("section checksum");
+        const auto flags = table.le<uint32_t>("section flags");
+        const std::string label = "section " + tag + "[" + std::to_string(index) + "]";
+        if (offset > bytes.size() || stored > bytes.size() - offset) fail(label + " lies outside the file");
+        auto payload = bytes.subspan(size_t(offset), stored);
+        if (crc_of(payload) != crc) fail(label + " is corrupted (checksum mismatch)");
+        if (raw_len > kMaxRawSection) fail(label + " is too large");
+        std::vector<uint8_t> data;
+        if (flags & kFlagZlib) {
+            data.resize(raw_len);
+            uLongf out_len = raw_len;
+            if (uncompress(data.data(), &out_len, payload.data(), stored) != Z_OK || out_len != raw_len)
+                fail(label + " does not decompress to its recorded length");
+        } else {
+            if (stored != raw_len) fail(label + " has inconsistent lengths");
+            data.assign(payload.begin(), payload.end());
+        }
+        if (!raw.emplace(std::pair{tag, index}, data).second) fail(label + " appears twice");
+        if (tag != "IDNT") ordered.push_back({tag, index, std::move(data)});
+    }
+    auto section = [&](const char* tag, uint32_t index) -> Reader {
+        auto it = raw.find({tag, index});
+        const std::string label = std::string("section ") + tag + "[" + std::to_string(index) + "]";
+        if (it == raw.end()) whole.fail(label + " is missing");
+        return Reader(it->second, where + " " + label);
+    };
+
+    TextureMap map;
+    uint32_t images = 0;
+    {
+        Reader r = section("META", 0);
+        const auto cw = r.le<uint32_t>("cell width"), ch = r.le<uint32_t>("cell height");
+        images = r.le<uint32_t>("cell image count");
+        if (cw < 8 || ch < 8 || cw > uint32_t(kMaxCellSide) || ch > uint32_t(kMaxCellSide))
+            r.fail("cell size " + std::to_string(cw) + "x" + std::to_string(ch) + " is out of range");
+        if (images != 1)
+            r.fail("holds " + std::to_string(images) +
+                   " cell images; this tilejet renders maps with exactly one");
+        map.cell_width = int(cw), map.cell_height = int(ch);
+        map.build.seed = r.le<uint64_t>("build seed");
+        map.build.exemplar_width = int(r.le<uint32_t>("exemplar width"));
+        map.build.exemplar_height = int(r.le<uint32_t>("exemplar height"));
+        map.build.patches_requested = int(r.le<uint32_t>("patches requested"));
+        map.build.candidates = int(r.le<uint32_t>("candidates"));
+        map.build.active_per_cell = r.f64("active patches per cell");
+        r.done();
+    }
+    {
+        Reader r = section("SRCE", 0);
+        map.source = read_image(r, kMaxSourceSide);
+        r.done();
+    }
+    for (uint32_t t = 0; t < images; ++t) {
+        CellImage c;
+        Reader img = section("CELL", t);
+        c.rgb = read_image(img, kMaxCellSide);
+        img.done();
+        if (c.rgb.cols != map.cell_width || c.rgb.rows != map.cell_height)
+            img.fail("cell image size differs from the cell size");
+        Reader pa = section("PATA", t), pb = section("PATB", t);
+        c.a = read_patches(pa, map), c.b = read_patches(pb, map);
+        pa.done(), pb.done();
+        Reader oa = section("OVLA", t), ob = section("OVLB", t);
+        read_overlaps(oa, c.a), read_overlaps(ob, c.b);
+        oa.done(), ob.done();
+        map.cell_images.push_back(std::move(c));
+    }
+    {
+        Reader r = section("IDNT", 0);
+        auto id = r.take(32, "map id");
+        std::copy(id.begin(), id.end(), map.id.begin());
+        r.done();
+    }
+    if (content_hash(ordered) != map.id) fail("content does not match its map id (file altered)");
+    return map;
+}
+
+void save_texture_map(const TextureMap& map, const std::filesystem::path& path) {
+    const std::vector<uint8_t> bytes = encode_texture_map(map);
+    const std::filesystem::path tmp = path.string() + ".partial";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw MapFileError("cannot write texture map '" + path.string() + "': " + std::strerror(errno));
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        out.flush();
+        if (!out) throw MapFileError("cannot write texture map '" + path.string() + "': " + std::strerror(errno));
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw MapFileError("cannot write texture map '" + path.string() + "': " + ec.message());
+}
+
+TextureMap load_texture_map(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw MapFileError("cannot read texture map '" + path.string() + "': " + std::strerror(errno));
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw MapFileError("cannot read texture map '" + path.string() + "'");
+    if (bytes.empty()) throw MapFileError("texture map '" + path.string() + "' is an empty file");
+    return decode_texture_map(bytes, path.string());
+}
+
+}  // namespace tilejet::synth

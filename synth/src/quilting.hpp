@@ -1,0 +1,22 @@
+#pragma once
+
+#include <opencv2/core/mat.hpp>
+
+#include "mix64.hpp"
+
+namespace tilejet::synth::detail {
+
+struct QuiltParams {
+    int block = 32;          // square block side b
+    int overlap = 5;         // overlap o between neighbouring blocks
+    double tolerance = 0.1;  // candidates within 10% of the best overlap error are eligible
+};
+
+// Image quilting (Efros and Freeman 2001) on a torus: blocks are laid in raster order over a
+// grid that wraps, so the last column and row are matched against the first and the result
+// tiles seamlessly. Overlaps are cut along minimum-error boundary paths (dynamic programming).
+// `exemplar_lab` is to_lab(exemplar_rgb); returns CV_8UC3 R,G,B of `size`.
+cv::Mat quilt_toroidal(const cv::Mat& exemplar_rgb, const cv::Mat& exemplar_lab, cv::Size size,
+                       const QuiltParams& params, Rng& rng);
+
+}  // namespace tilejet::synth::detail

@@ -1,0 +1,111 @@
+#include <algorithm>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+#include "active_set.hpp"
+#include "diamond.hpp"
+#include "plane_limits.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+namespace tilejet::synth {
+
+namespace {
+
+using detail::CellGrid;
+using detail::floor_div;
+using detail::floor_mod;
+
+// Rows [row0, row1) of the region: first the cell image everywhere, then every active patch
+// of every cell whose diamond reaches the band, run by run. Patches never overlap one another
+// (diamonds, the A/B split and overlap removal see to that), so the order of the copies does
+// not matter and the bytes equal Sampler::sample's.
+void render_band(const TextureMap& map, uint64_t seed, const Region& region, int row0, int row1,
+                 uint8_t* rgb, size_t stride) {
+    const CellGrid grid(map.cell_width, map.cell_height);
+    const int64_t cw = grid.cell_width(), ch = grid.cell_height();
+    const CellImage& image = map.cell_images.front();
+
+    const int64_t x0 = region.x, x1 = region.x + region.width;
+    for (int r = row0; r < row1; ++r) {
+        const uint8_t* cell_row = image.rgb.ptr<uint8_t>(int(floor_mod(region.y + r, ch)));
+        uint8_t* dst = rgb + size_t(r) * stride;
+        int64_t offset = floor_mod(x0, cw);
+        for (int64_t left = region.width; left > 0;) {
+            const int64_t n = std::min(cw - offset, left);
+            std::memcpy(dst, cell_row + 3 * offset, size_t(3 * n));
+            dst += 3 * n, left -= n, offset = 0;
+        }
+    }
+
+    const int64_t y0 = region.y + row0, y1 = region.y + row1;
+    const uint64_t map_id = map.id64();
+    std::vector<uint16_t> active;
+    for (CellType type : {CellType::A, CellType::B}) {
+        const PatchSet& set = image.set(type);
+        // A diamond reaches at most one cell size beyond its cell on every side.
+        for (int64_t j = floor_div(y0, ch) - 1; j <= floor_div(y1 - 1, ch) + 1; ++j) {
+            const int64_t i_first = floor_div(x0, cw) - 1, i_last = floor_div(x1 - 1, cw) + 1;
+            for (int64_t i = i_first; i <= i_last; ++i) {
+                if (((i + j) & 1) != int64_t(type)) continue;
+                detail::compute_active_set(set, detail::cell_key(map_id, seed, 0, type, i, j),
+                                           active);
+                for (uint16_t k : active) {
+                    const Patch& p = set.patches[k];
+                    const int64_t px = i * cw + p.x, py = j * ch + p.y;
+                    const int64_t top = std::max(py, y0), bottom = std::min(py + p.height, y1);
+                    if (top >= bottom || px >= x1 || px + p.width <= x0) continue;
+                    for (int64_t y = top; y < bottom; ++y) {
+                        const int row = int(y - py);
+                        const uint8_t* src = map.source.ptr<uint8_t>(p.src_y + row);
+                        uint8_t* dst = rgb + size_t(y - region.y) * stride;
+                        for (uint32_t q = p.row_runs[size_t(row)]; q < p.row_runs[size_t(row) + 1];
+                             ++q) {
+                            const MaskRun& run = p.runs[q];
+                            const int64_t a = std::max(px + run.x, x0);
+                            const int64_t b = std::min(px + run.x + run.length, x1);
+                            if (a >= b) continue;
+                            std::memcpy(dst + 3 * (a - x0), src + 3 * (p.src_x + (a - px)),
+                                        size_t(3 * (b - a)));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+}  // namespace
+
+void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
+                   size_t stride, int threads) {
+    if (region.width < 0 || region.height < 0)
+        throw SynthError("region size " + std::to_string(region.width) + "x" +
+                         std::to_string(region.height) + " is negative");
+    if (region.width == 0 || region.height == 0) return;
+    if (stride < size_t(region.width) * 3)
+        throw SynthError("row stride " + std::to_string(stride) + " is shorter than a row");
+    detail::check_plane_point(region.x, region.y);
+    detail::check_plane_point(region.x + region.width, region.y + region.height);
+
+    if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    const int bands = std::min(threads, region.height);
+    if (bands == 1) return render_band(map, seed, region, 0, region.height, rgb, stride);
+
+    std::vector<std::jthread> workers;
+    workers.reserve(size_t(bands));
+    for (int b = 0; b < bands; ++b) {
+        const int row0 = int(int64_t(region.height) * b / bands);
+        const int row1 = int(int64_t(region.height) * (b + 1) / bands);
+        workers.emplace_back(
+            [&, row0, row1] { render_band(map, seed, region, row0, row1, rgb, stride); });
+    }
+}
+
+cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads) {
+    cv::Mat out(region.height, region.width, CV_8UC3);
+    render_region(map, seed, region, out.data, out.step[0], threads);
+    return out;
+}
+
+}  // namespace tilejet::synth

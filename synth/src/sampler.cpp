@@ -1,0 +1,59 @@
+#include "tilejet/synth/sampler.hpp"
+
+#include "active_set.hpp"
+#include "diamond.hpp"
+#include "plane_limits.hpp"
+
+namespace tilejet::synth {
+
+using detail::CellGrid;
+
+std::vector<uint16_t> active_patches(const TextureMap& map, uint64_t seed, CellType type,
+                                     CellIndex cell) {
+    std::vector<uint16_t> active;
+    const uint64_t key = detail::cell_key(map.id64(), seed, 0, type, cell.i, cell.j);
+    detail::compute_active_set(map.cell_images.front().set(type), key, active);
+    return active;
+}
+
+CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t y) {
+    return CellGrid(map.cell_width, map.cell_height).cell(type, x, y);
+}
+
+Sampler::Sampler(const TextureMap& map, uint64_t seed) : map_(map), seed_(seed) {}
+
+const std::vector<uint16_t>& Sampler::active(CellType type, CellIndex cell) {
+    const size_t slot = size_t(uint64_t(cell.i) * 3 + uint64_t(cell.j)) % kMemoSlots;
+    Memo& memo = memo_[size_t(type)][slot];
+    if (!memo.valid || !(memo.cell == cell)) {
+        const uint64_t key = detail::cell_key(map_.id64(), seed_, 0, type, cell.i, cell.j);
+        detail::compute_active_set(map_.cell_images.front().set(type), key, memo.active);
+        memo.cell = cell;
+        memo.valid = true;
+    }
+    return memo.active;
+}
+
+Rgb Sampler::sample(int64_t x, int64_t y) {
+    detail::check_plane_point(x, y);
+    const CellGrid grid(map_.cell_width, map_.cell_height);
+    const CellImage& image = map_.cell_images.front();
+    for (CellType type : {CellType::A, CellType::B}) {
+        const CellIndex cell = grid.cell(type, x, y);
+        const PatchSet& set = image.set(type);
+        const int64_t px = x - cell.i * grid.cell_width(), py = y - cell.j * grid.cell_height();
+        for (uint16_t k : active(type, cell)) {
+            const Patch& p = set.patches[k];
+            const int64_t bx = px - p.x, by = py - p.y;
+            if (bx < 0 || by < 0 || bx >= p.width || by >= p.height) continue;
+            if (!p.covers(int(bx), int(by))) continue;
+            const uint8_t* s = map_.source.ptr<uint8_t>(p.src_y + int(by)) + 3 * (p.src_x + bx);
+            return {s[0], s[1], s[2]};
+        }
+    }
+    const uint8_t* c = image.rgb.ptr<uint8_t>(int(detail::floor_mod(y, grid.cell_height()))) +
+                       3 * detail::floor_mod(x, grid.cell_width());
+    return {c[0], c[1], c[2]};
+}
+
+}  // namespace tilejet::synth
