@@ -3,10 +3,9 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <stdexcept>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 namespace tilejet::cli {
 
@@ -17,7 +16,8 @@ void write_rgb_image(const cv::Mat& rgb, const std::filesystem::path& path) {
         for (int r = 0; out && r < rgb.rows; ++r)
             out.write(reinterpret_cast<const char*>(rgb.ptr(r)), std::streamsize(rgb.cols) * 3);
         if (!out)
-            throw std::runtime_error("cannot write '" + path.string() + "': " + std::strerror(errno));
+            throw std::runtime_error("cannot write '" + path.string() +
+                                     "': " + std::strerror(errno));
         return;
     }
     if (ext != ".png")

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <filesystem>
-
 #include <opencv2/core/mat.hpp>
 
 namespace tilejet::cli {

@@ -28,7 +28,8 @@ synth::Region region_of(const RenderOptions& o) {
         const auto layout = synth::parse_tile_layout(o.layout);
         if (!layout)
             throw std::invalid_argument("--layout '" + o.layout + "': expected scatter or wall");
-        return synth::tile_region(o.seed, *o.tile, {size.width, size.height, *layout, o.wall_width});
+        return synth::tile_region(o.seed, *o.tile,
+                                  {size.width, size.height, *layout, o.wall_width});
     }
     const Point2 origin = parse_point(o.origin, "--origin");
     return {origin.x, origin.y, size.width, size.height};

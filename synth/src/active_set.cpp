@@ -14,10 +14,8 @@ uint64_t cell_key(uint64_t map_id, uint64_t seed, uint32_t cell_image, CellType 
     return hash_combine(h, uint64_t(j));
 }
 
-namespace {
-
-// Overlap removal (design.md section 3.3). Sets are small (about 10 patches), so a quadratic
-// pass over the overlap bit matrix is the fastest way.
+// Active sets are small (about 10 patches), so a quadratic pass over the overlap bit matrix is
+// the fastest way.
 void remove_overlaps(const PatchSet& set, std::vector<uint16_t>& active) {
     const size_t n = active.size();
     if (n < 2) return;
@@ -39,7 +37,8 @@ void remove_overlaps(const PatchSet& set, std::vector<uint16_t>& active) {
     for (;;) {
         size_t worst = n;
         for (size_t a = 0; a < n; ++a)
-            if (!dropped[a] && degree[a] > 0 && (worst == n || degree[a] > degree[worst])) worst = a;
+            if (!dropped[a] && degree[a] > 0 && (worst == n || degree[a] > degree[worst]))
+                worst = a;
         if (worst == n) break;
         dropped[worst] = true;
         for (size_t b = 0; b < n; ++b)
@@ -51,9 +50,7 @@ void remove_overlaps(const PatchSet& set, std::vector<uint16_t>& active) {
     active.resize(kept);
 }
 
-}  // namespace
-
-void compute_active_set(const PatchSet& set, uint64_t key, std::vector<uint16_t>& active) {
+void activate(const PatchSet& set, uint64_t key, std::vector<uint16_t>& active) {
     active.clear();
     const uint64_t threshold = set.activation_threshold;
     const size_t n = set.size();
@@ -62,7 +59,6 @@ void compute_active_set(const PatchSet& set, uint64_t key, std::vector<uint16_t>
         state += kGolden;
         if (mix64(state) < threshold) active.push_back(uint16_t(k));
     }
-    remove_overlaps(set, active);
 }
 
 }  // namespace tilejet::synth::detail

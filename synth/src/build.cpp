@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <chrono>
+#include <cmath>
+#include <opencv2/core.hpp>
 #include <thread>
 
 #include "candidate_patch.hpp"
@@ -70,10 +71,8 @@ std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParam
     const uint64_t stream = hash_combine(params.seed, kCandidateStream);
     parallel_for(
         found.size(), threads,
-        [&](size_t i, int) {
-            found[i] = make_candidate(space, hash_combine(stream, i));
-        },
-        progress, "candidate patches");
+        [&](size_t i, int) { found[i] = make_candidate(space, hash_combine(stream, i)); }, progress,
+        "candidate patches");
 
     // Best P by seam cost alone would keep only tiny patches in flat areas (short cuts there
     // are cheap) and leave the cell image showing almost everywhere. So candidates are ranked
@@ -98,8 +97,8 @@ std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParam
         // Larger classes get larger shares (1 : 2 : ... : 6): they carry most of the variety.
         constexpr size_t kWeights = kSizeClasses * (kSizeClasses + 1) / 2;
         const size_t before = size_t(c) * size_t(c + 1) / 2, upto = before + size_t(c + 1);
-        const size_t share = size_t(params.patches) * upto / kWeights -
-                             size_t(params.patches) * before / kWeights;
+        const size_t share =
+            size_t(params.patches) * upto / kWeights - size_t(params.patches) * before / kWeights;
         for (size_t i = 0; i < members.size(); ++i)
             (i < share ? kept : spare).push_back(std::move(members[i]));
     }
@@ -113,7 +112,8 @@ std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParam
 PatchSet make_set(const std::vector<Patch>& all, const std::vector<size_t>& members,
                   double active_per_cell) {
     PatchSet set;
-    for (size_t m : members) set.patches.push_back(all[m]);
+    for (size_t m : members)
+        set.patches.push_back(all[m]);
     const size_t n = set.size(), words = set.overlap_row_words();
     set.overlap_bits.assign(n * words, 0);
     for (size_t a = 0; a < n; ++a)
@@ -126,37 +126,66 @@ PatchSet make_set(const std::vector<Patch>& all, const std::vector<size_t>& memb
     return set;
 }
 
+double mean_lab_distance(const cv::Mat& lab_a, const cv::Mat& lab_b) {
+    const cv::Scalar a = cv::mean(lab_a), b = cv::mean(lab_b);
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                     (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+// One cell image shows wherever no patch does, so its mean colour becomes the wall's.
+// Quilting favours blocks that match their neighbours well, which in veined stone means the
+// calm background: a single quilt is often visibly darker or paler than the exemplar. So
+// several are quilted and the one whose mean CIELab colour is closest to the exemplar's kept,
+// stopping early at one that is within a just-noticeable difference.
+cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, int cell,
+                         const QuiltParams& quilt, uint64_t seed) {
+    constexpr int kTrials = 24;
+    constexpr double kGoodEnough = 1.0;  // CIE76
+    cv::Mat best;
+    double best_distance = 0;
+    for (int t = 0; t < kTrials; ++t) {
+        Rng rng(hash_combine(hash_combine(seed, kCellStream), uint64_t(t)));
+        cv::Mat candidate = quilt_toroidal(exemplar, exemplar_lab, {cell, cell}, quilt, rng);
+        const double distance = mean_lab_distance(to_lab(candidate), exemplar_lab);
+        if (best.empty() || distance < best_distance) best = candidate, best_distance = distance;
+        if (best_distance < kGoodEnough) break;
+    }
+    return best;
+}
+
 }  // namespace
 
 TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
                              const BuildProgress& progress) {
     check_exemplar(exemplar, "exemplar");
     check_params(params, exemplar);
-    const int threads =
-        params.threads > 0 ? params.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const int cell = params.cell_size ? params.cell_size
-                                      : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
-    const int candidates = params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
+    const int threads = params.threads > 0 ? params.threads
+                                           : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int cell = params.cell_size
+                         ? params.cell_size
+                         : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
+    const int candidates =
+        params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
 
     TextureMap map;
     map.cell_width = map.cell_height = cell;
-    map.build = {params.seed, exemplar.cols, exemplar.rows, params.patches, candidates,
-                 params.active_per_cell};
+    map.build = {params.seed,    exemplar.cols, exemplar.rows,
+                 params.patches, candidates,    params.active_per_cell};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6)};
     if (progress) progress("cell image", 0, 1);
-    Rng cell_rng(hash_combine(params.seed, kCellStream));
     CellImage image;
-    image.rgb = quilt_toroidal(exemplar, exemplar_lab, {cell, cell}, quilt, cell_rng);
+    image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell, quilt, params.seed);
 
     // Patches need room around them in the source; small exemplars are enlarged first.
     if (exemplar.cols < 2 * cell || exemplar.rows < 2 * cell) {
         if (progress) progress("source image", 0, 1);
         Rng source_rng(hash_combine(params.seed, kSourceStream));
-        map.source = quilt_toroidal(exemplar, exemplar_lab,
-                                    {std::max(exemplar.cols, 2 * cell), std::max(exemplar.rows, 2 * cell)},
-                                    quilt, source_rng);
+        map.source =
+            quilt_toroidal(exemplar, exemplar_lab,
+                           {std::max(exemplar.cols, 2 * cell), std::max(exemplar.rows, 2 * cell)},
+                           quilt, source_rng);
     } else {
         map.source = exemplar.clone();
     }
@@ -184,8 +213,9 @@ TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
     Rng split_rng(hash_combine(params.seed, kSplitStream));
     const BicliqueSplit split = split_pseudo_biclique(n, conflict, split_rng);
     if (split.a.empty() || split.b.empty())
-        throw SynthError("could not split the patches into two non-overlapping sets; "
-                         "try more --patches or a larger --cell");
+        throw SynthError(
+            "could not split the patches into two non-overlapping sets; "
+            "try more --patches or a larger --cell");
 
     image.a = make_set(kept, split.a, params.active_per_cell);
     image.b = make_set(kept, split.b, params.active_per_cell);

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
-
 #include <opencv2/imgproc/detail/gcgraph.hpp>
+#include <vector>
 
 #include "mix64.hpp"
 
@@ -69,7 +68,8 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
 
     // GCGraph cannot be cleared for reuse, so every candidate gets its own.
     cv::detail::GCGraph<float> graph(unsigned(side * side), unsigned(2 * 2 * side * side));
-    for (int i = 0; i < side * side; ++i) graph.addVtx();
+    for (int i = 0; i < side * side; ++i)
+        graph.addVtx();
     for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x) {
             const int n = node(x, y);
@@ -114,7 +114,8 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
                 uint8_t(1u << ((x - x0) & 7));
             const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
             for (const auto& q : nb)  // the rim is never in, so neighbours exist
-                if (!in[size_t(node(q[0], q[1]))]) seam = std::max(seam, weight(n, node(q[0], q[1])));
+                if (!in[size_t(node(q[0], q[1]))])
+                    seam = std::max(seam, weight(n, node(q[0], q[1])));
         }
     p.seam_cost = seam;
     p.derive_runs();

@@ -1,9 +1,8 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-
 #include <opencv2/core/mat.hpp>
+#include <optional>
 
 #include "diamond.hpp"
 #include "tilejet/synth/texture_map.hpp"

@@ -19,9 +19,12 @@ inline int64_t floor_div(int64_t a, int64_t b) {
     auto q = int64_t(double(a) / double(b));
     int64_t r = a - q * b;
     if (r < 0) {
-        do { --q, r += b; } while (r < 0);
+        do {
+            --q, r += b;
+        } while (r < 0);
     } else {
-        while (r >= b) ++q, r -= b;
+        while (r >= b)
+            ++q, r -= b;
     }
     return q;
 }
@@ -32,8 +35,9 @@ inline int64_t floor_mod(int64_t a, int64_t b) {
 }
 
 class CellGrid {
-public:
-    CellGrid(int cell_width, int cell_height) : cx_(cell_width), cy_(cell_height), d_(4 * cx_ * cy_) {}
+  public:
+    CellGrid(int cell_width, int cell_height)
+        : cx_(cell_width), cy_(cell_height), d_(4 * cx_ * cy_) {}
 
     int64_t cell_width() const { return cx_; }
     int64_t cell_height() const { return cy_; }
@@ -62,7 +66,7 @@ public:
         return (ax < 0 ? -ax : ax) * cy_ + (ay < 0 ? -ay : ay) * cx_ < 2 * cx_ * cy_;
     }
 
-private:
+  private:
     int64_t cx_, cy_, d_;
 };
 

@@ -3,10 +3,9 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <string>
-
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "tilejet/synth/error.hpp"
 
@@ -19,8 +18,8 @@ void check_exemplar(const cv::Mat& rgb, const std::string& name) {
     if (rgb.cols < kMinExemplarSide || rgb.rows < kMinExemplarSide)
         throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
                          std::to_string(rgb.rows) + " px; a texture needs at least " +
-                         std::to_string(kMinExemplarSide) + "x" +
-                         std::to_string(kMinExemplarSide) + " px");
+                         std::to_string(kMinExemplarSide) + "x" + std::to_string(kMinExemplarSide) +
+                         " px");
     if (int64_t(rgb.cols) * rgb.rows > kMaxExemplarPixels)
         throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
                          std::to_string(rgb.rows) + " px; texture maps take exemplars up to " +

@@ -1,6 +1,7 @@
 #include "tilejet/synth/map_file.hpp"
 
 #include <openssl/evp.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <bit>
@@ -8,7 +9,6 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <unistd.h>
 
 #include "diamond.hpp"
 
@@ -37,7 +37,7 @@ struct Section {
 };
 
 class Writer {
-public:
+  public:
     std::vector<uint8_t> bytes;
     void u8s(const void* p, size_t n) {
         auto b = static_cast<const uint8_t*>(p);
@@ -46,7 +46,8 @@ public:
     template <typename T>
     void le(T v) {
         auto u = std::bit_cast<std::make_unsigned_t<T>>(v);
-        for (size_t i = 0; i < sizeof(T); ++i) bytes.push_back(uint8_t(u >> (8 * i)));
+        for (size_t i = 0; i < sizeof(T); ++i)
+            bytes.push_back(uint8_t(u >> (8 * i)));
     }
     void f32(float v) { le(std::bit_cast<uint32_t>(v)); }
     void f64(double v) { le(std::bit_cast<uint64_t>(v)); }
@@ -54,13 +55,15 @@ public:
 
 // Bounds-checked reads; every failure names the file, the section and what was being read.
 class Reader {
-public:
-    Reader(std::span<const uint8_t> data, std::string where) : data_(data), where_(std::move(where)) {}
+  public:
+    Reader(std::span<const uint8_t> data, std::string where)
+        : data_(data), where_(std::move(where)) {}
     template <typename T>
     T le(const char* what) {
         need(sizeof(T), what);
         std::make_unsigned_t<T> u = 0;
-        for (size_t i = 0; i < sizeof(T); ++i) u |= std::make_unsigned_t<T>(data_[pos_ + i]) << (8 * i);
+        for (size_t i = 0; i < sizeof(T); ++i)
+            u |= std::make_unsigned_t<T>(data_[pos_ + i]) << (8 * i);
         pos_ += sizeof(T);
         return std::bit_cast<T>(u);
     }
@@ -77,9 +80,11 @@ public:
             throw MapFileError(where_ + ": " + std::to_string(data_.size() - pos_) +
                                " unexpected bytes at the end");
     }
-    [[noreturn]] void fail(const std::string& why) const { throw MapFileError(where_ + ": " + why); }
+    [[noreturn]] void fail(const std::string& why) const {
+        throw MapFileError(where_ + ": " + why);
+    }
 
-private:
+  private:
     void need(size_t n, const char* what) const {
         if (data_.size() - pos_ < n) fail(std::string("ends before ") + what);
     }
@@ -97,7 +102,8 @@ uint32_t crc_of(std::span<const uint8_t> b) {
 void write_image(Writer& w, const cv::Mat& rgb) {
     w.le<uint32_t>(uint32_t(rgb.cols));
     w.le<uint32_t>(uint32_t(rgb.rows));
-    for (int r = 0; r < rgb.rows; ++r) w.u8s(rgb.ptr(r), size_t(rgb.cols) * 3);
+    for (int r = 0; r < rgb.rows; ++r)
+        w.u8s(rgb.ptr(r), size_t(rgb.cols) * 3);
 }
 
 cv::Mat read_image(Reader& r, int max_side) {
@@ -145,7 +151,8 @@ PatchSet read_patches(Reader& r, const TextureMap& map) {
         p.src_x = r.le<int32_t>("patch source x"), p.src_y = r.le<int32_t>("patch source y");
         p.seam_cost = r.f32("patch seam cost");
         const std::string which = "patch " + std::to_string(k);
-        if (w == 0 || h == 0 || w > uint32_t(2 * map.cell_width) || h > uint32_t(2 * map.cell_height))
+        if (w == 0 || h == 0 || w > uint32_t(2 * map.cell_width) ||
+            h > uint32_t(2 * map.cell_height))
             r.fail(which + " has size " + std::to_string(w) + "x" + std::to_string(h));
         p.width = int(w), p.height = int(h);
         if (p.src_x < 0 || p.src_y < 0 || int64_t(p.src_x) + p.width > map.source.cols ||
@@ -161,7 +168,8 @@ PatchSet read_patches(Reader& r, const TextureMap& map) {
 
 void write_overlaps(Writer& w, const PatchSet& set) {
     w.le<uint32_t>(uint32_t(set.size()));
-    for (uint64_t word : set.overlap_bits) w.le<uint64_t>(word);
+    for (uint64_t word : set.overlap_bits)
+        w.le<uint64_t>(word);
 }
 
 void read_overlaps(Reader& r, PatchSet& set) {
@@ -170,7 +178,8 @@ void read_overlaps(Reader& r, PatchSet& set) {
         r.fail("overlap matrix is for " + std::to_string(n) + " patches, the set has " +
                std::to_string(set.size()));
     set.overlap_bits.resize(set.size() * set.overlap_row_words());
-    for (uint64_t& word : set.overlap_bits) word = r.le<uint64_t>("overlap bits");
+    for (uint64_t& word : set.overlap_bits)
+        word = r.le<uint64_t>("overlap bits");
 }
 
 std::vector<Section> content_sections(const TextureMap& map) {
@@ -236,14 +245,17 @@ std::vector<uint8_t> deflate_bytes(const std::vector<uint8_t>& raw) {
 
 }  // namespace
 
-void assign_map_id(TextureMap& map) { map.id = content_hash(content_sections(map)); }
+void assign_map_id(TextureMap& map) {
+    map.id = content_hash(content_sections(map));
+}
 
 std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
     std::vector<Section> sections = content_sections(map);
     sections.push_back({"IDNT", 0, std::vector<uint8_t>(map.id.begin(), map.id.end())});
 
     std::vector<std::vector<uint8_t>> stored;
-    for (const Section& s : sections) stored.push_back(deflate_bytes(s.raw));
+    for (const Section& s : sections)
+        stored.push_back(deflate_bytes(s.raw));
 
     Writer table;
     uint64_t offset = kHeaderBytes + kEntryBytes * sections.size();
@@ -265,7 +277,8 @@ std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
     out.le<uint32_t>(crc_of(table.bytes));
     out.le<uint32_t>(0);
     out.u8s(table.bytes.data(), table.bytes.size());
-    for (const auto& s : stored) out.u8s(s.data(), s.size());
+    for (const auto& s : stored)
+        out.u8s(s.data(), s.size());
     return std::move(out.bytes);
 }
 
@@ -287,11 +300,12 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     const auto length = header.le<uint64_t>("file length");
     const auto table_crc = header.le<uint32_t>("section table checksum");
     if (length != bytes.size())
-        fail(length > bytes.size() ? "truncated: " + std::to_string(bytes.size()) + " of " +
-                                         std::to_string(length) + " bytes present"
-                                   : std::to_string(bytes.size() - length) +
-                                         " bytes of trailing data after the map");
-    if (count == 0 || count > kMaxSections) fail("section count " + std::to_string(count) + " is invalid");
+        fail(length > bytes.size()
+                 ? "truncated: " + std::to_string(bytes.size()) + " of " + std::to_string(length) +
+                       " bytes present"
+                 : std::to_string(bytes.size() - length) + " bytes of trailing data after the map");
+    if (count == 0 || count > kMaxSections)
+        fail("section count " + std::to_string(count) + " is invalid");
     if (bytes.size() < kHeaderBytes + size_t(count) * kEntryBytes) fail("truncated section table");
     auto table_bytes = bytes.subspan(kHeaderBytes, size_t(count) * kEntryBytes);
     if (crc_of(table_bytes) != table_crc) fail("section table is corrupted (checksum mismatch)");
@@ -309,7 +323,8 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         const auto crc = table.le<uint32_t>("section checksum");
         const auto flags = table.le<uint32_t>("section flags");
         const std::string label = "section " + tag + "[" + std::to_string(index) + "]";
-        if (offset > bytes.size() || stored > bytes.size() - offset) fail(label + " lies outside the file");
+        if (offset > bytes.size() || stored > bytes.size() - offset)
+            fail(label + " lies outside the file");
         auto payload = bytes.subspan(size_t(offset), stored);
         if (crc_of(payload) != crc) fail(label + " is corrupted (checksum mismatch)");
         if (raw_len > kMaxRawSection) fail(label + " is too large");
@@ -317,7 +332,8 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (flags & kFlagZlib) {
             data.resize(raw_len);
             uLongf out_len = raw_len;
-            if (uncompress(data.data(), &out_len, payload.data(), stored) != Z_OK || out_len != raw_len)
+            if (uncompress(data.data(), &out_len, payload.data(), stored) != Z_OK ||
+                out_len != raw_len)
                 fail(label + " does not decompress to its recorded length");
         } else {
             if (stored != raw_len) fail(label + " has inconsistent lengths");
@@ -340,7 +356,8 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         const auto cw = r.le<uint32_t>("cell width"), ch = r.le<uint32_t>("cell height");
         images = r.le<uint32_t>("cell image count");
         if (cw < 8 || ch < 8 || cw > uint32_t(kMaxCellSide) || ch > uint32_t(kMaxCellSide))
-            r.fail("cell size " + std::to_string(cw) + "x" + std::to_string(ch) + " is out of range");
+            r.fail("cell size " + std::to_string(cw) + "x" + std::to_string(ch) +
+                   " is out of range");
         if (images != 1)
             r.fail("holds " + std::to_string(images) +
                    " cell images; this tilejet renders maps with exactly one");
@@ -388,10 +405,14 @@ void save_texture_map(const TextureMap& map, const std::filesystem::path& path) 
     const std::filesystem::path tmp = path.string() + ".partial";
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw MapFileError("cannot write texture map '" + path.string() + "': " + std::strerror(errno));
+        if (!out)
+            throw MapFileError("cannot write texture map '" + path.string() +
+                               "': " + std::strerror(errno));
         out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         out.flush();
-        if (!out) throw MapFileError("cannot write texture map '" + path.string() + "': " + std::strerror(errno));
+        if (!out)
+            throw MapFileError("cannot write texture map '" + path.string() +
+                               "': " + std::strerror(errno));
     }
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
@@ -400,8 +421,11 @@ void save_texture_map(const TextureMap& map, const std::filesystem::path& path) 
 
 TextureMap load_texture_map(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw MapFileError("cannot read texture map '" + path.string() + "': " + std::strerror(errno));
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in)
+        throw MapFileError("cannot read texture map '" + path.string() +
+                           "': " + std::strerror(errno));
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
     if (in.bad()) throw MapFileError("cannot read texture map '" + path.string() + "'");
     if (bytes.empty()) throw MapFileError("texture map '" + path.string() + "' is an empty file");
     return decode_texture_map(bytes, path.string());

@@ -19,20 +19,22 @@ constexpr uint64_t mix64(uint64_t z) {
     return z ^ (z >> 31);
 }
 
-constexpr uint64_t hash_combine(uint64_t h, uint64_t v) { return mix64(h ^ mix64(v + kGolden)); }
+constexpr uint64_t hash_combine(uint64_t h, uint64_t v) {
+    return mix64(h ^ mix64(v + kGolden));
+}
 
 // A deterministic generator for the offline build (splitmix64 stream). Unlike the standard
 // distributions its draws are the same with every standard library.
 class Rng {
-public:
+  public:
     explicit constexpr Rng(uint64_t seed) : state_(seed) {}
     constexpr uint64_t next() { return mix64(state_ += kGolden); }
     // Uniform in [0, n), n > 0 (Lemire's multiply-shift; bias below 2^-32 for our n).
     uint64_t below(uint64_t n) { return uint64_t(uint128(next()) * n >> 64); }
     int range(int lo, int hi) { return lo + int(below(uint64_t(hi - lo + 1))); }  // [lo, hi]
-    double unit() { return double(next() >> 11) * 0x1.0p-53; }                     // [0, 1)
+    double unit() { return double(next() >> 11) * 0x1.0p-53; }                    // [0, 1)
 
-private:
+  private:
     uint64_t state_;
 };
 

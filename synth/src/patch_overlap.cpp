@@ -16,8 +16,10 @@ bool patches_overlap(const Patch& a, const Patch& b, int dx, int dy) {
             const int a0 = a.x + a.runs[i].x, a1 = a0 + a.runs[i].length;
             const int b0 = bx + b.runs[j].x, b1 = b0 + b.runs[j].length;
             if (a0 < b1 && b0 < a1) return true;
-            if (a1 <= b1) ++i;
-            else ++j;
+            if (a1 <= b1)
+                ++i;
+            else
+                ++j;
         }
     }
     return false;

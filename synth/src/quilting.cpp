@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
-
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "tilejet/synth/error.hpp"
 
@@ -13,14 +12,15 @@ namespace tilejet::synth::detail {
 
 namespace {
 
-// Block search on very large exemplars looks in a random window of this size: the best match
-// in a million positions is as good as any for a cell image, and the search stays fast.
+// On very large exemplars blocks come from a random window of this size: the best match among
+// a million positions is as good as any for a cell image, and the search stays fast.
 constexpr int kSearchWindow = 1024;
 
 std::vector<int> block_starts(int length, int step) {
     const int n = std::max(2, int(std::lround(double(length) / step)));
     std::vector<int> starts(static_cast<size_t>(n) + 1);
-    for (int k = 0; k <= n; ++k) starts[size_t(k)] = int(int64_t(k) * length / n);
+    for (int k = 0; k <= n; ++k)
+        starts[size_t(k)] = int(int64_t(k) * length / n);
     return starts;
 }
 
@@ -61,32 +61,90 @@ struct Canvas {
     int wrap_y(int y) const { return ((y % rgb.rows) + rgb.rows) % rgb.rows; }
 };
 
-cv::Point choose_block(const cv::Mat& ex_lab, const cv::Mat& templ, const cv::Mat& mask,
-                       double tolerance, Rng& rng) {
-    const int range_x = ex_lab.cols - templ.cols, range_y = ex_lab.rows - templ.rows;
-    if (cv::countNonZero(mask) == 0) return {rng.range(0, range_x), rng.range(0, range_y)};
-
-    cv::Rect window(0, 0, ex_lab.cols, ex_lab.rows);
-    if (ex_lab.cols > kSearchWindow + templ.cols)
-        window.x = rng.range(0, ex_lab.cols - kSearchWindow - templ.cols),
-        window.width = kSearchWindow + templ.cols;
-    if (ex_lab.rows > kSearchWindow + templ.rows)
-        window.y = rng.range(0, ex_lab.rows - kSearchWindow - templ.rows),
-        window.height = kSearchWindow + templ.rows;
-
-    cv::Mat error;
-    cv::matchTemplate(ex_lab(window), templ, error, cv::TM_SQDIFF, mask);
-    double best = 0;
-    cv::minMaxLoc(error, &best);
-    best = std::max(best, 0.0);  // the FFT path can return tiny negatives
-    const double limit = best * (1 + tolerance) + 1e-6;
-    std::vector<cv::Point> eligible;
-    for (int y = 0; y < error.rows; ++y)
-        for (int x = 0; x < error.cols; ++x)
-            if (error.at<float>(y, x) <= limit) eligible.emplace_back(x, y);
-    const cv::Point pick = eligible[size_t(rng.below(eligible.size()))];
-    return pick + window.tl();
+// The placed strips a block must match: the overlap bands on each side that lie wholly on
+// pixels already placed. Only these take part in the error and in the cut.
+std::vector<cv::Rect> placed_strips(const cv::Mat& filled, int overlap) {
+    const int bw = filled.cols, bh = filled.rows;
+    std::vector<cv::Rect> strips;
+    for (const cv::Rect r : {cv::Rect(0, 0, overlap, bh), cv::Rect(bw - overlap, 0, overlap, bh),
+                             cv::Rect(0, 0, bw, overlap), cv::Rect(0, bh - overlap, bw, overlap)})
+        if (cv::countNonZero(filled(r)) == r.area()) strips.push_back(r);
+    return strips;
 }
+
+// Finds blocks of the exemplar that match a footprint's placed strips. The overlap error
+// (sum of squared CIELab differences over the strips' pixels, m) is expanded as
+//   sum m*I^2 - 2 sum (m*T)*I + sum m*T^2
+// whose two position-dependent terms are correlations: with the exemplar's spectra computed
+// once per quilt, each block costs four forward FFTs and one inverse (several times faster
+// than cv::matchTemplate, which transforms the exemplar again on every call).
+class BlockSearch {
+  public:
+    BlockSearch(const cv::Mat& ex_lab, Rng& rng) {
+        window_ = cv::Rect(0, 0, ex_lab.cols, ex_lab.rows);
+        if (ex_lab.cols > kSearchWindow)
+            window_.x = rng.range(0, ex_lab.cols - kSearchWindow), window_.width = kSearchWindow;
+        if (ex_lab.rows > kSearchWindow)
+            window_.y = rng.range(0, ex_lab.rows - kSearchWindow), window_.height = kSearchWindow;
+        size_ = {cv::getOptimalDFTSize(window_.width), cv::getOptimalDFTSize(window_.height)};
+        std::vector<cv::Mat> channels;
+        cv::split(ex_lab(window_), channels);
+        cv::Mat energy(window_.size(), CV_32F, cv::Scalar(0));
+        for (int c = 0; c < 3; ++c) {
+            spectrum_[c] = forward(channels[size_t(c)]);
+            energy += channels[size_t(c)].mul(channels[size_t(c)]);
+        }
+        energy_spectrum_ = forward(energy);
+    }
+
+    cv::Point choose(const cv::Mat& templ, const std::vector<cv::Rect>& strips, double tolerance,
+                     Rng& rng) const {
+        const int range_x = window_.width - templ.cols, range_y = window_.height - templ.rows;
+        if (strips.empty())
+            return window_.tl() + cv::Point(rng.range(0, range_x), rng.range(0, range_y));
+
+        cv::Mat mask(templ.size(), CV_32F, cv::Scalar(0));
+        for (const cv::Rect& s : strips)
+            mask(s).setTo(1);
+        std::vector<cv::Mat> t;
+        cv::split(templ, t);
+        double constant = 0;
+        cv::Mat acc;
+        cv::mulSpectrums(energy_spectrum_, forward(mask), acc, 0, true);
+        for (int c = 0; c < 3; ++c) {
+            const cv::Mat masked = t[size_t(c)].mul(mask);
+            constant += masked.dot(t[size_t(c)]);
+            cv::Mat cross;
+            cv::mulSpectrums(spectrum_[c], forward(masked), cross, 0, true);
+            acc -= 2 * cross;
+        }
+        cv::Mat error;
+        cv::dft(acc, error, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+        error = error(cv::Rect(0, 0, range_x + 1, range_y + 1)) + constant;
+
+        double best = 0;
+        cv::minMaxLoc(error, &best);
+        best = std::max(best, 0.0);  // rounding in the FFT can dip below zero
+        const double limit = best * (1 + tolerance) + 1e-3;
+        std::vector<cv::Point> eligible;
+        for (int y = 0; y < error.rows; ++y)
+            for (int x = 0; x < error.cols; ++x)
+                if (error.at<float>(y, x) <= limit) eligible.emplace_back(x, y);
+        return window_.tl() + eligible[size_t(rng.below(eligible.size()))];
+    }
+
+  private:
+    cv::Mat forward(const cv::Mat& plane) const {
+        cv::Mat padded(size_, CV_32F, cv::Scalar(0)), spectrum;
+        plane.copyTo(padded(cv::Rect(0, 0, plane.cols, plane.rows)));
+        cv::dft(padded, spectrum);
+        return spectrum;
+    }
+
+    cv::Rect window_;
+    cv::Size size_;
+    cv::Mat spectrum_[3], energy_spectrum_;
+};
 
 }  // namespace
 
@@ -95,15 +153,18 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
     const int o = params.overlap, step = params.block - params.overlap;
     // Each block must reach past its overlap strips, or a cut could not separate them.
     if (o < 1 || step <= o) throw SynthError("quilting block must be over twice its overlap");
-    const std::vector<int> xs = block_starts(size.width, step), ys = block_starts(size.height, step);
+    const std::vector<int> xs = block_starts(size.width, step),
+                           ys = block_starts(size.height, step);
     const int largest_w = [&] {
         int m = 0;
-        for (size_t k = 1; k < xs.size(); ++k) m = std::max(m, xs[k] - xs[k - 1]);
+        for (size_t k = 1; k < xs.size(); ++k)
+            m = std::max(m, xs[k] - xs[k - 1]);
         return m + o;
     }();
     const int largest_h = [&] {
         int m = 0;
-        for (size_t k = 1; k < ys.size(); ++k) m = std::max(m, ys[k] - ys[k - 1]);
+        for (size_t k = 1; k < ys.size(); ++k)
+            m = std::max(m, ys[k] - ys[k - 1]);
         return m + o;
     }();
     if (largest_w > ex_rgb.cols || largest_h > ex_rgb.rows)
@@ -111,9 +172,10 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                          std::to_string(ex_rgb.rows) + " px is too small for quilting blocks of " +
                          std::to_string(params.block) + " px");
 
-    Canvas c{cv::Mat(size, CV_8UC3, cv::Scalar::all(0)), cv::Mat(size, CV_32FC3, cv::Scalar::all(0)),
-             cv::Mat(size, CV_8U, cv::Scalar(0))};
+    Canvas c{cv::Mat(size, CV_8UC3, cv::Scalar::all(0)),
+             cv::Mat(size, CV_32FC3, cv::Scalar::all(0)), cv::Mat(size, CV_8U, cv::Scalar(0))};
 
+    const BlockSearch search(ex_lab, rng);
     for (size_t l = 0; l + 1 < ys.size(); ++l) {
         for (size_t k = 0; k + 1 < xs.size(); ++k) {
             // Footprint: the block plus its overlap to the left and above, wrapping around.
@@ -126,7 +188,8 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                     templ.at<cv::Vec3f>(y, x) = c.lab.at<cv::Vec3f>(cy, cx);
                     mask.at<uint8_t>(y, x) = c.filled.at<uint8_t>(cy, cx) ? 255 : 0;
                 }
-            const cv::Point at = choose_block(ex_lab, templ, mask, params.tolerance, rng);
+            const std::vector<cv::Rect> strips = placed_strips(mask, o);
+            const cv::Point at = search.choose(templ, strips, params.tolerance, rng);
 
             cv::Mat err(bh, bw, CV_32F, cv::Scalar(0));
             for (int y = 0; y < bh; ++y)
@@ -135,32 +198,21 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                         err.at<float>(y, x) = lab_sq(templ.at<cv::Vec3f>(y, x),
                                                      ex_lab.at<cv::Vec3f>(at.y + y, at.x + x));
 
-            // A strip takes part in the cut only when it lies wholly on placed pixels.
-            auto all_filled = [&](cv::Rect r) { return cv::countNonZero(mask(r)) == r.area(); };
-            const cv::Rect left(0, 0, o, bh), right(bw - o, 0, o, bh);
-            const cv::Rect top(0, 0, bw, o), bottom(0, bh - o, bw, o);
+            // Each placed strip is cut along its minimum-error path; the new block shows on
+            // the inner side of every cut.
             cv::Mat take_new(bh, bw, CV_8U, cv::Scalar(1));
-            if (all_filled(left)) {
-                const auto path = min_path(err(left));
-                for (int y = 0; y < bh; ++y)
-                    for (int x = 0; x < path[size_t(y)]; ++x) take_new.at<uint8_t>(y, x) = 0;
-            }
-            if (all_filled(right)) {
-                const auto path = min_path(err(right));
-                for (int y = 0; y < bh; ++y)
-                    for (int x = bw - o + path[size_t(y)] + 1; x < bw; ++x)
+            for (const cv::Rect& s : strips) {
+                const bool vertical = s.height == bh && s.width == o;
+                const auto path = min_path(vertical ? cv::Mat(err(s)) : cv::Mat(err(s).t()));
+                const bool near_side = vertical ? s.x == 0 : s.y == 0;
+                for (int along = 0; along < (vertical ? bh : bw); ++along)
+                    for (int across = 0; across < o; ++across) {
+                        const int cut = path[size_t(along)];
+                        if (near_side ? across >= cut : across <= cut) continue;
+                        const int x = vertical ? s.x + across : along;
+                        const int y = vertical ? along : s.y + across;
                         take_new.at<uint8_t>(y, x) = 0;
-            }
-            if (all_filled(top)) {
-                const auto path = min_path(cv::Mat(err(top).t()));
-                for (int x = 0; x < bw; ++x)
-                    for (int y = 0; y < path[size_t(x)]; ++y) take_new.at<uint8_t>(y, x) = 0;
-            }
-            if (all_filled(bottom)) {
-                const auto path = min_path(cv::Mat(err(bottom).t()));
-                for (int x = 0; x < bw; ++x)
-                    for (int y = bh - o + path[size_t(x)] + 1; y < bh; ++y)
-                        take_new.at<uint8_t>(y, x) = 0;
+                    }
             }
 
             for (int y = 0; y < bh; ++y)

@@ -75,18 +75,22 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
     }
 }
 
+void check_region(const Region& region) {
+    if (region.width < 0 || region.height < 0)
+        throw SynthError("region size " + std::to_string(region.width) + "x" +
+                         std::to_string(region.height) + " is negative");
+    detail::check_plane_point(region.x, region.y);
+    detail::check_plane_point(region.x + region.width, region.y + region.height);
+}
+
 }  // namespace
 
 void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
                    size_t stride, int threads) {
-    if (region.width < 0 || region.height < 0)
-        throw SynthError("region size " + std::to_string(region.width) + "x" +
-                         std::to_string(region.height) + " is negative");
+    check_region(region);
     if (region.width == 0 || region.height == 0) return;
     if (stride < size_t(region.width) * 3)
         throw SynthError("row stride " + std::to_string(stride) + " is shorter than a row");
-    detail::check_plane_point(region.x, region.y);
-    detail::check_plane_point(region.x + region.width, region.y + region.height);
 
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
     const int bands = std::min(threads, region.height);
@@ -103,6 +107,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
 }
 
 cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads) {
+    check_region(region);
     cv::Mat out(region.height, region.width, CV_8UC3);
     render_region(map, seed, region, out.data, out.step[0], threads);
     return out;

@@ -16,7 +16,8 @@ void Patch::derive_runs() {
                 continue;
             }
             const int start = c;
-            while (c < width && covers(c, r)) ++c;
+            while (c < width && covers(c, r))
+                ++c;
             runs.push_back({uint16_t(r), uint16_t(start), uint16_t(c - start)});
         }
     }
@@ -25,14 +26,16 @@ void Patch::derive_runs() {
 
 uint64_t TextureMap::id64() const {
     uint64_t v = 0;
-    for (int b = 7; b >= 0; --b) v = (v << 8) | id[size_t(b)];
+    for (int b = 7; b >= 0; --b)
+        v = (v << 8) | id[size_t(b)];
     return v;
 }
 
 std::string TextureMap::id_hex() const {
     static const char digits[] = "0123456789abcdef";
     std::string s;
-    for (uint8_t b : id) s += digits[b >> 4], s += digits[b & 15];
+    for (uint8_t b : id)
+        s += digits[b >> 4], s += digits[b & 15];
     return s;
 }
 

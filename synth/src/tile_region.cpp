@@ -28,8 +28,8 @@ Region tile_region(uint64_t seed, uint64_t index, const TileGeometry& g) {
     const int64_t wall_x = int64_t(h >> 35) - (kHalfRange >> 1);
     const int64_t wall_y = int64_t(h & 0x1fffffffull) - (kHalfRange >> 1);
     const uint64_t per_row = uint64_t(g.wall_width > 0 ? g.wall_width : 1);
-    return {wall_x + int64_t(index % per_row) * g.width, wall_y + int64_t(index / per_row) * g.height,
-            g.width, g.height};
+    return {wall_x + int64_t(index % per_row) * g.width,
+            wall_y + int64_t(index / per_row) * g.height, g.width, g.height};
 }
 
 }  // namespace tilejet::synth

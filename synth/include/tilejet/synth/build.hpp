@@ -4,21 +4,20 @@
 
 #include <cstdint>
 #include <functional>
-#include <string_view>
-
 #include <opencv2/core/mat.hpp>
+#include <string_view>
 
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::synth {
 
 struct BuildParams {
-    int cell_size = 0;           // 0: default (128 px, at most the exemplar's smaller side)
-    int patches = 600;           // P: the best P candidates are kept and split into A and B
-    int candidates = 0;          // 0: default (40 * patches)
+    int cell_size = 0;   // 0: default (128 px, at most the exemplar's smaller side)
+    int patches = 600;   // P: the best P candidates are kept and split into A and B
+    int candidates = 0;  // 0: default (40 * patches)
     uint64_t seed = 1;
-    int threads = 0;             // 0: all cores; the result never depends on it
-    double active_per_cell = 10; // expected active patches per cell (eta * |set|)
+    int threads = 0;              // 0: all cores; the result never depends on it
+    double active_per_cell = 10;  // expected active patches per cell (eta * |set|)
 };
 
 // Reports build progress: a stage name and how far it is (done of total).

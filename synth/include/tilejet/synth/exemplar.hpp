@@ -1,8 +1,9 @@
 #pragma once
 
 #include <filesystem>
-
 #include <opencv2/core/mat.hpp>
+
+#include "tilejet/synth/error.hpp"
 
 namespace tilejet::synth {
 

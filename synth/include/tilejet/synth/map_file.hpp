@@ -17,7 +17,7 @@
 namespace tilejet::synth {
 
 class MapFileError : public SynthError {
-public:
+  public:
     using SynthError::SynthError;
 };
 

@@ -5,10 +5,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include <opencv2/core/mat.hpp>
-
+#include "tilejet/synth/error.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::synth {
@@ -32,11 +32,11 @@ struct CellIndex {
 // Samples single pixels. Keeps the active patch sets of the cells it visited last, so scanning
 // neighbouring pixels is cheap; the memo never changes a result. One Sampler per thread.
 class Sampler {
-public:
+  public:
     Sampler(const TextureMap& map, uint64_t seed);
     Rgb sample(int64_t x, int64_t y);
 
-private:
+  private:
     struct Memo {
         bool valid = false;
         CellIndex cell;
@@ -62,7 +62,6 @@ CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t 
 // `threads` 0 means all cores.
 void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
                    size_t stride, int threads = 0);
-cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region,
-                      int threads = 0);
+cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads = 0);
 
 }  // namespace tilejet::synth

@@ -6,10 +6,9 @@
 
 #include <array>
 #include <cstdint>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core/mat.hpp>
 
 namespace tilejet::synth {
 
@@ -25,12 +24,12 @@ struct MaskRun {
 // cell it is shown in; it may hang over the cell's edge but never leaves the cell's diamond)
 // and the source pixel that the mask's top-left corner copies.
 struct Patch {
-    int x = 0, y = 0;          // bounding box top-left, cell coordinates
-    int width = 0, height = 0; // bounding box size
-    int src_x = 0, src_y = 0;  // source pixel shown at the bounding box's top-left
-    float seam_cost = 0;       // largest single edge cost along the patch's cut (lower is better)
-    std::vector<uint8_t> bits; // row-major, one bit per pixel, each row padded to whole bytes
-    std::vector<MaskRun> runs; // derived from bits, sorted by row
+    int x = 0, y = 0;           // bounding box top-left, cell coordinates
+    int width = 0, height = 0;  // bounding box size
+    int src_x = 0, src_y = 0;   // source pixel shown at the bounding box's top-left
+    float seam_cost = 0;        // largest single edge cost along the patch's cut (lower is better)
+    std::vector<uint8_t> bits;  // row-major, one bit per pixel, each row padded to whole bytes
+    std::vector<MaskRun> runs;  // derived from bits, sorted by row
     std::vector<uint32_t> row_runs;  // runs of row r are [row_runs[r], row_runs[r + 1])
 
     int row_bytes() const { return (width + 7) / 8; }

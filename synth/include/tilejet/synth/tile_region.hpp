@@ -21,7 +21,7 @@ std::string_view tile_layout_name(TileLayout layout);
 struct TileGeometry {
     int width = 0, height = 0;  // pixels
     TileLayout layout = TileLayout::Scatter;
-    int wall_width = 10;        // tiles per wall row, for TileLayout::Wall
+    int wall_width = 10;  // tiles per wall row, for TileLayout::Wall
 };
 
 // Tile `index` of a job with `seed`. Depends only on (seed, index, geometry).

@@ -1,0 +1,108 @@
+// Building texture maps: what the map holds, and that it looks like its exemplar.
+
+#include <catch2/catch.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "diamond.hpp"
+#include "fixtures.hpp"
+#include "tilejet/synth/build.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+using namespace tilejet::synth;
+using tilejet::test::demo_exemplar;
+using tilejet::test::small_map;
+
+namespace {
+
+cv::Vec3d mean_lab(const cv::Mat& rgb) {
+    cv::Mat unit, lab;
+    rgb.convertTo(unit, CV_32FC3, 1.0 / 255);
+    cv::cvtColor(unit, lab, cv::COLOR_RGB2Lab);
+    const cv::Scalar m = cv::mean(lab);
+    return {m[0], m[1], m[2]};
+}
+
+}  // namespace
+
+TEST_CASE("a rendered region has the exemplar's mean CIELab colour", "[build]") {
+    const cv::Vec3d ex = mean_lab(demo_exemplar());
+    const cv::Vec3d out = mean_lab(render_region(small_map(), 8, {12345, -6789, 1024, 1024}));
+    const double delta_e = cv::norm(ex - out);  // CIE76
+    INFO("exemplar Lab " << ex << ", rendered Lab " << out << ", dE76 " << delta_e);
+    REQUIRE(delta_e < 3.0);
+}
+
+TEST_CASE("the cell image wraps around without a seam", "[build]") {
+    // Across the wrap the cell image should change no more than between any two neighbouring
+    // columns or rows inside it: compare the mean jump at the wrap with the typical jump.
+    const cv::Mat cell = small_map().cell_images.front().rgb;
+    cv::Mat lab;
+    cell.convertTo(lab, CV_32FC3, 1.0 / 255);
+    cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);
+    auto column_jump = [&](int a, int b) {
+        double sum = 0;
+        for (int y = 0; y < lab.rows; ++y)
+            sum += cv::norm(lab.at<cv::Vec3f>(y, a) - lab.at<cv::Vec3f>(y, b));
+        return sum / lab.rows;
+    };
+    double inner = 0;
+    for (int x = 0; x + 1 < lab.cols; ++x)
+        inner += column_jump(x, x + 1);
+    inner /= lab.cols - 1;
+    const double wrap = column_jump(lab.cols - 1, 0);
+    INFO("mean jump inside " << inner << ", across the wrap " << wrap);
+    REQUIRE(wrap < 2.0 * inner);
+}
+
+TEST_CASE("a built map has patches in both sets, inside their diamonds and the source", "[build]") {
+    const TextureMap& map = small_map();
+    const CellImage& image = map.cell_images.front();
+    REQUIRE(image.a.size() > 20);
+    REQUIRE(image.b.size() > 20);
+    const tilejet::synth::detail::CellGrid grid(map.cell_width, map.cell_height);
+    for (const PatchSet* set : {&image.a, &image.b}) {
+        size_t small = 0, large = 0;
+        for (const Patch& p : set->patches) {
+            REQUIRE(p.src_x >= 0);
+            REQUIRE(p.src_y >= 0);
+            REQUIRE(p.src_x + p.width <= map.source.cols);
+            REQUIRE(p.src_y + p.height <= map.source.rows);
+            for (int y = 0; y < p.height; ++y)
+                for (int x = 0; x < p.width; ++x)
+                    if (p.covers(x, y)) REQUIRE(grid.in_diamond_interior(p.x + x, p.y + y));
+            const int side = std::max(p.width, p.height);
+            small += side <= map.cell_width / 8;
+            large += side >= map.cell_width / 4;
+        }
+        // Sizes span from a few pixels to a good part of the cell.
+        REQUIRE(small > 0);
+        REQUIRE(large > 0);
+    }
+}
+
+TEST_CASE("map builds do not depend on the number of threads", "[build]") {
+    BuildParams p;
+    p.cell_size = 48;
+    p.patches = 60;
+    p.candidates = 900;
+    p.seed = 4;
+    p.threads = 1;
+    const TextureMap one = build_texture_map(demo_exemplar(), p);
+    p.threads = 2;
+    const TextureMap two = build_texture_map(demo_exemplar(), p);
+    REQUIRE(one.id == two.id);
+    p.seed = 5;
+    REQUIRE(build_texture_map(demo_exemplar(), p).id != one.id);
+}
+
+TEST_CASE("small exemplars are enlarged into a source twice the cell size", "[build]") {
+    cv::Mat small;
+    demo_exemplar()(cv::Rect(0, 0, 70, 70)).copyTo(small);
+    BuildParams p;
+    p.cell_size = 64;
+    p.patches = 40;
+    p.candidates = 400;
+    const TextureMap map = build_texture_map(small, p);
+    REQUIRE(map.source.cols >= 128);
+    REQUIRE(map.source.rows >= 128);
+}

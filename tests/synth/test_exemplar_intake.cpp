@@ -1,0 +1,111 @@
+// Exemplars as engineers bring them: odd formats work, broken ones fail with a clear message.
+
+#include <catch2/catch.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "fixtures.hpp"
+#include "tilejet/synth/build.hpp"
+#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+using namespace tilejet::synth;
+using Catch::Matchers::Contains;
+using tilejet::test::demo_exemplar;
+using tilejet::test::TempDir;
+
+namespace {
+
+BuildParams quick_params() {
+    BuildParams p;
+    p.cell_size = 32;
+    p.patches = 40;
+    p.candidates = 400;
+    return p;
+}
+
+std::string load_error(const std::filesystem::path& path) {
+    try {
+        load_exemplar(path);
+    } catch (const SynthError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("unreadable, empty and undecodable exemplars fail naming the file", "[exemplar]") {
+    TempDir dir;
+    REQUIRE_THAT(load_error(dir / "missing.png"),
+                 Contains("missing.png") && Contains("cannot read"));
+    tilejet::test::write_file(dir / "empty.png", "");
+    REQUIRE_THAT(load_error(dir / "empty.png"), Contains("empty.png") && Contains("empty"));
+    tilejet::test::write_file(dir / "junk.png", "this is not an image at all");
+    REQUIRE_THAT(load_error(dir / "junk.png"), Contains("junk.png") && Contains("cannot decode"));
+    std::vector<uchar> png;
+    cv::imencode(".png", demo_exemplar(), png);
+    tilejet::test::write_file(dir / "cut.png", std::string(png.begin(), png.begin() + 200));
+    REQUIRE_THAT(load_error(dir / "cut.png"), Contains("cut.png"));
+}
+
+TEST_CASE("a 1x1 exemplar is refused with its size", "[exemplar]") {
+    TempDir dir;
+    cv::imwrite((dir / "dot.png").string(), cv::Mat(1, 1, CV_8UC3, cv::Scalar(1, 2, 3)));
+    REQUIRE_THAT(load_error(dir / "dot.png"), Contains("dot.png") && Contains("1x1"));
+}
+
+TEST_CASE("a grey-only exemplar builds a map that renders grey", "[exemplar]") {
+    TempDir dir;
+    cv::Mat grey;
+    cv::cvtColor(demo_exemplar(), grey, cv::COLOR_RGB2GRAY);
+    cv::imwrite((dir / "grey.png").string(), grey);
+    const cv::Mat loaded = load_exemplar(dir / "grey.png");
+    REQUIRE(loaded.type() == CV_8UC3);
+    const TextureMap map = build_texture_map(loaded, quick_params());
+    const cv::Mat out = render_region(map, 1, {0, 0, 64, 64});
+    for (int y = 0; y < out.rows; ++y)
+        for (int x = 0; x < out.cols; ++x) {
+            const cv::Vec3b p = out.at<cv::Vec3b>(y, x);
+            REQUIRE((p[0] == p[1] && p[1] == p[2]));
+        }
+}
+
+TEST_CASE("a flat single-colour exemplar still builds a valid map", "[exemplar]") {
+    const cv::Mat flat(96, 96, CV_8UC3, cv::Scalar(120, 80, 40));
+    const TextureMap map = build_texture_map(flat, quick_params());
+    const cv::Mat out = render_region(map, 1, {-50, -50, 100, 100});
+    REQUIRE(cv::norm(out, cv::Mat(100, 100, CV_8UC3, cv::Scalar(120, 80, 40)), cv::NORM_INF) == 0);
+}
+
+TEST_CASE("a 16-bit exemplar loads as its 8-bit equivalent", "[exemplar]") {
+    TempDir dir;
+    cv::Mat bgr16;
+    cv::cvtColor(demo_exemplar(), bgr16, cv::COLOR_RGB2BGR);
+    bgr16.convertTo(bgr16, CV_16UC3, 257.0);
+    cv::imwrite((dir / "deep.png").string(), bgr16);
+    const cv::Mat loaded = load_exemplar(dir / "deep.png");
+    REQUIRE(loaded.type() == CV_8UC3);
+    REQUIRE(cv::norm(loaded, demo_exemplar(), cv::NORM_INF) <= 1);
+}
+
+TEST_CASE("a huge exemplar is refused with its size, without a crash", "[exemplar][slow]") {
+    TempDir dir;
+    {
+        const cv::Mat huge(20000, 20000, CV_8UC3, cv::Scalar(90, 90, 90));
+        REQUIRE(cv::imwrite((dir / "huge.png").string(), huge, {cv::IMWRITE_PNG_COMPRESSION, 1}));
+    }
+    REQUIRE_THAT(load_error(dir / "huge.png"), Contains("huge.png") && Contains("20000x20000"));
+}
+
+TEST_CASE("build parameters out of range are refused by name", "[exemplar]") {
+    BuildParams p = quick_params();
+    p.cell_size = 4000;
+    REQUIRE_THROWS_WITH(build_texture_map(demo_exemplar(), p), Contains("--cell"));
+    p = quick_params();
+    p.patches = 1;
+    REQUIRE_THROWS_WITH(build_texture_map(demo_exemplar(), p), Contains("--patches"));
+    p = quick_params();
+    p.candidates = 10;
+    REQUIRE_THROWS_WITH(build_texture_map(demo_exemplar(), p), Contains("--candidates"));
+}
