@@ -57,6 +57,16 @@ class CellGrid {
     CellIndex cell(CellType type, int64_t x, int64_t y) const {
         return type == CellType::A ? a_cell(x, y) : b_cell(x, y);
     }
+    // Both cells at once with two divisions instead of four: the A and B grids are offset by
+    // half a period, so both floors follow from floor(u / (D/2)) and floor(v / (D/2)).
+    void cells(int64_t x, int64_t y, CellIndex& a, CellIndex& b) const {
+        const int64_t u = (2 * x + 1) * cy_ + (2 * y + 1) * cx_;
+        const int64_t v = (2 * x + 1) * cy_ - (2 * y + 1) * cx_;
+        const int64_t q = floor_div(u, d_ / 2), r = floor_div(v, d_ / 2);
+        const int64_t ma = q >> 1, na = (r + 1) >> 1, mb = (q + 1) >> 1, nb = r >> 1;
+        a = {ma + na, ma - na};
+        b = {mb + nb, mb - nb - 1};
+    }
 
     // Whether cell-relative pixel (px, py) lies strictly inside its cell's diamond. A patch
     // whose pixels all pass can be shown in any cell of either type: strict interiors of

@@ -23,7 +23,9 @@ CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t 
 Sampler::Sampler(const TextureMap& map, uint64_t seed) : map_(map), seed_(seed) {}
 
 const std::vector<uint16_t>& Sampler::active(CellType type, CellIndex cell) {
-    const size_t slot = size_t(uint64_t(cell.i) * 3 + uint64_t(cell.j)) % kMemoSlots;
+    const size_t slot = size_t((uint64_t(cell.i) * 0x9e3779b97f4a7c15ull ^ uint64_t(cell.j)) *
+                                   0xff51afd7ed558ccdull >>
+                               58);
     Memo& memo = memo_[size_t(type)][slot];
     if (!memo.valid || !(memo.cell == cell)) {
         const uint64_t key = detail::cell_key(map_.id64(), seed_, 0, type, cell.i, cell.j);
@@ -38,11 +40,16 @@ Rgb Sampler::sample(int64_t x, int64_t y) {
     detail::check_plane_point(x, y);
     const CellGrid grid(map_.cell_width, map_.cell_height);
     const CellImage& image = map_.cell_images.front();
+    CellIndex cells[2];
+    grid.cells(x, y, cells[0], cells[1]);
     for (CellType type : {CellType::A, CellType::B}) {
-        const CellIndex cell = grid.cell(type, x, y);
+        const CellIndex cell = cells[size_t(type)];
+        // Neighbouring pixels mostly share their cells: skip the memo lookup then.
+        Current& current = current_[size_t(type)];
+        if (!current.active || !(current.cell == cell)) current = {cell, &active(type, cell)};
         const PatchSet& set = image.set(type);
         const int64_t px = x - cell.i * grid.cell_width(), py = y - cell.j * grid.cell_height();
-        for (uint16_t k : active(type, cell)) {
+        for (uint16_t k : *current.active) {
             const Patch& p = set.patches[k];
             const int64_t bx = px - p.x, by = py - p.y;
             if (bx < 0 || by < 0 || bx >= p.width || by >= p.height) continue;

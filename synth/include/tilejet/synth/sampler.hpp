@@ -34,6 +34,8 @@ struct CellIndex {
 class Sampler {
   public:
     Sampler(const TextureMap& map, uint64_t seed);
+    Sampler(const Sampler&) = delete;  // it points into its own memo
+    Sampler& operator=(const Sampler&) = delete;
     Rgb sample(int64_t x, int64_t y);
 
   private:
@@ -46,8 +48,13 @@ class Sampler {
 
     const TextureMap& map_;
     uint64_t seed_;
-    static constexpr size_t kMemoSlots = 8;
+    static constexpr size_t kMemoSlots = 64;  // a 1024 px scan row meets ~20 cells of each type
     Memo memo_[2][kMemoSlots];
+    struct Current {
+        CellIndex cell;
+        const std::vector<uint16_t>* active = nullptr;  // into memo_
+    };
+    Current current_[2];
 };
 
 // The patches of `type` shown in cell `cell` for this seed: activated by hash, then overlaps

@@ -1,0 +1,160 @@
+// tilejet-bench: speed and size figures of texture maps, each beside a baseline measured in the
+// same run on the same machine. Prints figures; it never passes or fails on time.
+//   tilejet-bench            full run (about a minute on 2 cores)
+//   tilejet-bench --smoke    tiny sizes, to check that the benchmark itself still works
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tilejet/synth/build.hpp"
+#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+using namespace tilejet::synth;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+template <typename F>
+double best_seconds(int repeats, F&& f) {
+    double best = 1e30;
+    for (int r = 0; r < repeats; ++r) {
+        const auto t0 = Clock::now();
+        f();
+        best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    return best;
+}
+
+// Keeps the optimizer from dropping work whose result is otherwise unused.
+volatile uint64_t g_sink = 0;
+
+double memcpy_bytes_per_second(size_t bytes, int repeats) {
+    std::vector<uint8_t> a(bytes, 1), b(bytes, 2);
+    const double s = best_seconds(repeats, [&] {
+        std::memcpy(b.data(), a.data(), bytes);
+        g_sink = g_sink + b[bytes / 2];
+    });
+    return double(bytes) / s;
+}
+
+void row(const char* what, const std::string& value, const std::string& baseline,
+         const std::string& target) {
+    std::printf("  %-44s %14s %22s   %s\n", what, value.c_str(), baseline.c_str(), target.c_str());
+}
+
+std::string fmt(const char* f, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const bool smoke = argc > 1 && std::strcmp(argv[1], "--smoke") == 0;
+    const std::filesystem::path exemplar_path =
+        std::filesystem::path(TILEJET_SOURCE_DIR) / "config/demo/green-marble.png";
+    const cv::Mat demo = load_exemplar(exemplar_path);
+    const int region_side = smoke ? 256 : 4096;
+    const int repeats = smoke ? 1 : 5;
+
+    std::printf("tilejet-bench%s: %u hardware threads\n\n", smoke ? " --smoke" : "",
+                std::thread::hardware_concurrency());
+    std::printf("  %-44s %14s %22s   %s\n", "figure", "tilejet", "baseline (same run)", "target");
+
+    // Baseline: copying as many bytes as a region render writes.
+    const size_t region_bytes = size_t(region_side) * region_side * 3;
+    const double memcpy_bps = memcpy_bytes_per_second(region_bytes, repeats);
+    row("memcpy of one region's bytes", fmt("%.2f GB/s", memcpy_bps / 1e9), "-", "-");
+
+    // The map sampled and rendered: the demo design at default settings (smoke: small).
+    BuildParams params;
+    if (smoke) params.cell_size = 32, params.patches = 40, params.candidates = 400;
+    const auto t_demo = Clock::now();
+    const TextureMap map = build_texture_map(demo, params);
+    const double demo_build_s = std::chrono::duration<double>(Clock::now() - t_demo).count();
+
+    // Per-pixel sampling on one core. Scan order is how a tile is read pixel by pixel (the
+    // sampler reuses the active sets of the cells it just visited); random points compute
+    // both cells' active sets from scratch on every call.
+    {
+        const int side = smoke ? 128 : 1024;
+        Sampler sampler(map, 77);
+        const double s = best_seconds(repeats, [&] {
+            uint64_t sum = 0;
+            for (int y = 0; y < side; ++y)
+                for (int x = 0; x < side; ++x)
+                    sum += sampler.sample(x - 5000, y + 7000).g;
+            g_sink = g_sink + sum;
+        });
+        row("sample(), scan order, 1 core", fmt("%.1f ns/px", s * 1e9 / (double(side) * side)), "-",
+            "<= 50 ns/px");
+        const int points = smoke ? 1000 : 200000;
+        const double r = best_seconds(repeats, [&] {
+            uint64_t sum = 0, h = 12345;
+            for (int i = 0; i < points; ++i) {
+                h = h * 6364136223846793005ull + 1442695040888963407ull;
+                sum += sampler
+                           .sample(int64_t(h >> 33) - (int64_t(1) << 30),
+                                   int64_t(h & 0x7fffffff) - (int64_t(1) << 30))
+                           .g;
+            }
+            g_sink = g_sink + sum;
+        });
+        row("sample(), random points, 1 core", fmt("%.1f ns/px", r * 1e9 / points), "-",
+            "(no target)");
+    }
+
+    // Region rendering against memcpy of the same bytes.
+    cv::Mat out(region_side, region_side, CV_8UC3);
+    for (int threads : {1, 2}) {
+        const double s = best_seconds(repeats, [&] {
+            render_region(map, 77, {-123456, 654321, region_side, region_side}, out.data,
+                          out.step[0], threads);
+        });
+        const double bps = double(region_bytes) / s;
+        const std::string label = "render_region " + std::to_string(region_side) + "^2, " +
+                                  std::to_string(threads) + " thread" + (threads > 1 ? "s" : "");
+        row(label.c_str(),
+            fmt("%.0f Mpx/s", double(region_side) * region_side / s / 1e6) +
+                fmt(" %.2f GB/s", bps / 1e9),
+            fmt("%.0f%% of memcpy", 100 * bps / memcpy_bps),
+            threads == 2 ? ">= 50% of memcpy" : "-");
+    }
+
+    // Map build of a 512x512 exemplar (the demo stone enlarged 2x) with 600 patches.
+    {
+        cv::Mat big;
+        cv::resize(demo, big, {smoke ? 96 : 512, smoke ? 96 : 512}, 0, 0, cv::INTER_CUBIC);
+        BuildParams p;
+        if (smoke) p.cell_size = 32, p.patches = 40, p.candidates = 400;
+        p.threads = 2;
+        const auto t0 = Clock::now();
+        const TextureMap m = build_texture_map(big, p);
+        const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+        const std::vector<uint8_t> bytes = encode_texture_map(m);
+        const double exemplar_bytes = double(big.total() * 3);
+        row(smoke ? "map build 96^2 exemplar, 2 threads"
+                  : "map build 512^2, 600 patches, 2 threads",
+            fmt("%.1f s", s), "-", "<= 60 s");
+        row("  its map file", fmt("%.0f KB", double(bytes.size()) / 1e3),
+            fmt("%.2fx exemplar RGB", double(bytes.size()) / exemplar_bytes), "<= 4x");
+    }
+    {
+        const std::vector<uint8_t> bytes = encode_texture_map(map);
+        row(smoke ? "demo map build (small)" : "demo map build 256^2, defaults, all cores",
+            fmt("%.1f s", demo_build_s), "-", "-");
+        row("  its map file", fmt("%.0f KB", double(bytes.size()) / 1e3),
+            fmt("%.2fx exemplar RGB", double(bytes.size()) / double(demo.total() * 3)), "<= 4x");
+    }
+    return 0;
+}
