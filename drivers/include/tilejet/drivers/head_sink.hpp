@@ -1,0 +1,38 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+// HeadSink: where one tile's separations go before its leading edge reaches the heads.
+namespace tilejet::drivers {
+
+struct TileSeparations {
+    std::string job_id;  // no whitespace (it travels in a line protocol)
+    std::uint64_t tile_index = 0;
+    // The separations as the heads take them (planar 8-bit contone, one plane per ink); the
+    // sink does not look inside.
+    std::span<const std::uint8_t> bytes;
+};
+
+// The heads' buffer is full: the previous tiles have not been printed yet. Nothing was queued;
+// send again after the next tile has passed.
+class HeadsBusy : public std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class HeadSink {
+  public:
+    virtual ~HeadSink() = default;
+
+    // Queues the separations for the next tile to reach the heads. The heads print a tile only
+    // when its separations were queued before its leading edge arrived; a tile that arrives
+    // with nothing queued passes unprinted (logged "missed"), and separations are never
+    // printed onto a tile already under the heads. Throws HeadsBusy when the buffer is full,
+    // std::runtime_error when the heads cannot be reached within `timeout`.
+    virtual void send(const TileSeparations& tile, std::chrono::milliseconds timeout) = 0;
+};
+
+}  // namespace tilejet::drivers

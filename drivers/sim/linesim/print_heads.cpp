@@ -1,0 +1,160 @@
+#include "print_heads.hpp"
+
+#include <openssl/evp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "../unix_socket.hpp"
+
+namespace tilejet::linesim {
+
+namespace {
+
+// Separations of one tile: 4 inks at 8 bit for a 1.2 x 1.2 m tile at 720 dpi is ~4.5 GB; the
+// largest format lines print today stay far below this bound.
+constexpr size_t kMaxTileBytes = size_t(1) << 30;
+
+std::string sha256_hex(std::string_view bytes) {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int length = 0;
+    EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr);
+    static const char* hex = "0123456789abcdef";
+    std::string out;
+    for (unsigned i = 0; i < length; ++i) {
+        out += hex[digest[i] >> 4];
+        out += hex[digest[i] & 15];
+    }
+    return out;
+}
+
+// The wall-clock time of a CLOCK_MONOTONIC instant, ISO 8601 UTC with milliseconds.
+std::string wall_time(ns monotonic) {
+    const auto now_mono = std::chrono::steady_clock::now().time_since_epoch();
+    const auto wall =
+        std::chrono::system_clock::now() -
+        std::chrono::duration_cast<std::chrono::system_clock::duration>(now_mono - monotonic);
+    const std::time_t seconds = std::chrono::system_clock::to_time_t(wall);
+    const auto ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(wall.time_since_epoch()).count() %
+        1000;
+    std::tm tm{};
+    gmtime_r(&seconds, &tm);
+    char text[40];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &tm);
+    char out[48];
+    std::snprintf(out, sizeof out, "%s.%03dZ", text, int(ms));
+    return out;
+}
+
+}  // namespace
+
+PrintHeads::PrintHeads(std::string path, int buffer_tiles, const std::string& log_path)
+    : path_(std::move(path)), capacity_(size_t(buffer_tiles)) {
+    listen_fd_ = drivers::sim::listen_unix(path_);
+    if (!log_path.empty()) {
+        log_.open(log_path, std::ios::app);
+        if (!log_) throw std::runtime_error("cannot open print log " + log_path);
+    }
+}
+
+PrintHeads::~PrintHeads() {
+    for (const Client& c : clients_)
+        ::close(c.peer.fd);
+    ::close(listen_fd_);
+    ::unlink(path_.c_str());
+}
+
+std::vector<int> PrintHeads::fds() const {
+    std::vector<int> fds{listen_fd_};
+    for (const Client& c : clients_)
+        fds.push_back(c.peer.fd);
+    return fds;
+}
+
+void PrintHeads::on_readable(int fd, ns now) {
+    if (fd == listen_fd_) {
+        const int client = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+        if (client >= 0) {
+            Client c;
+            c.peer.fd = client;
+            clients_.push_back(std::move(c));
+        }
+        return;
+    }
+    auto it = std::find_if(clients_.begin(), clients_.end(),
+                           [fd](const Client& c) { return c.peer.fd == fd; });
+    if (it == clients_.end()) return;
+    const bool open = it->peer.fill();
+    if (!serve(*it, now) || !open) {
+        ::close(it->peer.fd);
+        clients_.erase(it);
+    }
+}
+
+bool PrintHeads::serve(Client& c, ns now) {
+    while (true) {
+        if (!c.in_tile) {
+            std::string line;
+            if (!c.peer.next_line(line)) return c.peer.in.size() < 4096;
+            std::istringstream in(line);
+            std::string verb;
+            long long bytes = -1;
+            in >> verb >> c.job >> c.tile >> bytes;
+            if (!in || verb != "TILE" || bytes < 0 || size_t(bytes) > kMaxTileBytes) {
+                c.peer.send("ERROR malformed tile header '" + line.substr(0, 200) + "'\n");
+                return false;
+            }
+            c.expected = size_t(bytes);
+            c.in_tile = true;
+        }
+        if (c.peer.in.size() < c.expected) return true;
+        const std::string_view data(c.peer.in.data(), c.expected);
+        if (buffer_.size() >= capacity_) {
+            c.peer.send("FULL\n");
+        } else {
+            buffer_.push_back({c.job, c.tile, c.expected, sha256_hex(data), now});
+            c.peer.send("QUEUED " + std::to_string(buffer_.size()) + "\n");
+        }
+        c.peer.in.erase(0, c.expected);
+        c.in_tile = false;
+    }
+}
+
+void PrintHeads::tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready) {
+    nlohmann::ordered_json j;
+    j["time"] = wall_time(at);
+    j["line_tile"] = line_tile;
+    const bool have = !buffer_.empty() && buffer_.front().received <= at;
+    if (have && print_enable && head_ready) {
+        const Separations s = buffer_.front();
+        buffer_.pop_front();
+        j["status"] = "printed";
+        j["job"] = s.job;
+        j["tile"] = s.tile;
+        j["bytes"] = s.bytes;
+        j["sha256"] = s.sha256;
+        ++printed_;
+    } else {
+        j["status"] = "missed";
+        j["reason"] = !have           ? "no separations before the leading edge"
+                      : !print_enable ? "print-enable low"
+                                      : "heads not ready";
+        ++missed_;
+    }
+    log(j.dump());
+}
+
+void PrintHeads::log(const std::string& json_line) {
+    if (!log_.is_open()) return;
+    log_ << json_line << '\n';
+    log_.flush();  // a test or an operator tails this file while the line runs
+}
+
+}  // namespace tilejet::linesim

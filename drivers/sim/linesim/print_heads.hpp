@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "conveyor.hpp"
+#include "peer.hpp"
+
+// The simulated print heads: a small buffer of tiles' separations, fed over a Unix socket, and
+// fired when a tile's leading edge arrives. The print log gets one JSON line per tile that
+// reached the heads, printed or missed.
+namespace tilejet::linesim {
+
+class PrintHeads {
+  public:
+    PrintHeads(std::string path, int buffer_tiles, const std::string& log_path);
+    ~PrintHeads();
+
+    std::vector<int> fds() const;
+    void on_readable(int fd, ns now);
+
+    // Tile `line_tile`'s leading edge reached the heads at `at`. It is printed only with
+    // separations received before `at`; otherwise it is logged missed and whatever arrives
+    // later waits for the next tile.
+    void tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready);
+
+    size_t buffered() const { return buffer_.size(); }
+    std::uint64_t printed() const { return printed_; }
+    std::uint64_t missed() const { return missed_; }
+
+  private:
+    struct Separations {
+        std::string job;
+        std::uint64_t tile;
+        size_t bytes;
+        std::string sha256;
+        ns received;
+    };
+    struct Client {
+        Peer peer;
+        std::string job;
+        std::uint64_t tile = 0;
+        size_t expected = 0;
+        bool in_tile = false;
+    };
+
+    // False when the client sent something it cannot recover from (closed then).
+    bool serve(Client& client, ns now);
+    void log(const std::string& json_line);
+
+    std::string path_;
+    int listen_fd_ = -1;
+    size_t capacity_;
+    std::vector<Client> clients_;
+    std::deque<Separations> buffer_;
+    std::ofstream log_;
+    std::uint64_t printed_ = 0, missed_ = 0;
+};
+
+}  // namespace tilejet::linesim

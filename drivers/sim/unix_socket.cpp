@@ -1,0 +1,135 @@
+#include "unix_socket.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+namespace tilejet::drivers::sim {
+
+namespace {
+
+sockaddr_un address(const std::string& path) {
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    if (path.size() >= sizeof(a.sun_path))
+        throw std::runtime_error("socket path too long (max " +
+                                 std::to_string(sizeof(a.sun_path) - 1) + " bytes): " + path);
+    std::memcpy(a.sun_path, path.c_str(), path.size() + 1);
+    return a;
+}
+
+std::string error_text(const std::string& what, const std::string& doing) {
+    return what + ": " + doing + ": " + std::strerror(errno);
+}
+
+}  // namespace
+
+UnixSocket::~UnixSocket() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+UnixSocket::UnixSocket(UnixSocket&& other) noexcept
+    : fd_(std::exchange(other.fd_, -1)),
+      what_(std::move(other.what_)),
+      buffer_(std::move(other.buffer_)) {}
+
+UnixSocket& UnixSocket::operator=(UnixSocket&& other) noexcept {
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = std::exchange(other.fd_, -1);
+        what_ = std::move(other.what_);
+        buffer_ = std::move(other.buffer_);
+    }
+    return *this;
+}
+
+UnixSocket UnixSocket::connect(const std::string& path, const std::string& what,
+                               std::chrono::milliseconds timeout) {
+    const sockaddr_un a = address(path);
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    // Retried until the deadline: the simulator may still be creating its socket.
+    while (true) {
+        UnixSocket s(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+        s.what_ = what;
+        if (s.fd_ < 0) throw std::runtime_error(error_text(what, "socket"));
+        if (::connect(s.fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0) return s;
+        if ((errno != ENOENT && errno != ECONNREFUSED) ||
+            std::chrono::steady_clock::now() >= deadline)
+            throw std::runtime_error(error_text(what, "cannot connect to " + path));
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
+void UnixSocket::send_all(std::string_view bytes, std::chrono::milliseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (!bytes.empty()) {
+        const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+        if (n > 0) {
+            bytes.remove_prefix(size_t(n));
+            continue;
+        }
+        if (n < 0 && errno != EAGAIN && errno != EINTR)
+            throw std::runtime_error(error_text(what_, "send"));
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) throw std::runtime_error(what_ + ": send timed out");
+        pollfd p{fd_, POLLOUT, 0};
+        ::poll(&p, 1, int(left.count()) + 1);
+    }
+}
+
+std::optional<std::string> UnixSocket::read_line(std::chrono::microseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (true) {
+        if (const size_t nl = buffer_.find('\n'); nl != std::string::npos) {
+            std::string line = buffer_.substr(0, nl);
+            buffer_.erase(0, nl + 1);
+            return line;
+        }
+        const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+            deadline - std::chrono::steady_clock::now());
+        pollfd p{fd_, POLLIN, 0};
+        // poll has millisecond resolution; round up so a short timeout still waits.
+        const int ms = left.count() <= 0 ? 0 : int((left.count() + 999) / 1000);
+        const int rc = ::poll(&p, 1, ms);
+        if (rc < 0 && errno != EINTR) throw std::runtime_error(error_text(what_, "poll"));
+        if (rc <= 0) {
+            if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
+            continue;
+        }
+        char chunk[4096];
+        const ssize_t n = ::recv(fd_, chunk, sizeof chunk, MSG_DONTWAIT);
+        if (n == 0) throw std::runtime_error(what_ + ": the simulator closed the connection");
+        if (n < 0) {
+            if (errno == EAGAIN || errno == EINTR) continue;
+            throw std::runtime_error(error_text(what_, "recv"));
+        }
+        buffer_.append(chunk, size_t(n));
+    }
+}
+
+int listen_unix(const std::string& path) {
+    const sockaddr_un a = address(path);
+    std::error_code ignored;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ignored);
+    std::filesystem::remove(path, ignored);
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (fd < 0) throw std::runtime_error(error_text(path, "socket"));
+    if (::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 16) != 0) {
+        const std::string message = error_text(path, "cannot listen");
+        ::close(fd);
+        throw std::runtime_error(message);
+    }
+    return fd;
+}
+
+}  // namespace tilejet::drivers::sim
