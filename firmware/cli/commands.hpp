@@ -8,6 +8,7 @@ namespace tilejet::cli {
 // subcommand's callback and throws on failure (main reports the message and exits non-zero).
 void add_map_commands(CLI::App& app);
 void add_render_commands(CLI::App& app);
+void add_profile_commands(CLI::App& app);
 void add_line_commands(CLI::App& app);
 void add_sim_commands(CLI::App& app);
 

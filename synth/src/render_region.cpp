@@ -26,6 +26,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
     const int64_t cw = grid.cell_width(), ch = grid.cell_height();
     const CellImage& image = map.cell_images.front();
 
+    const int64_t px_bytes = int64_t(map.source.elemSize());  // 3 for RGB, 4 for CMYK
     const int64_t x0 = region.x, x1 = region.x + region.width;
     for (int r = row0; r < row1; ++r) {
         const uint8_t* cell_row = image.rgb.ptr<uint8_t>(int(floor_mod(region.y + r, ch)));
@@ -33,8 +34,8 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
         int64_t offset = floor_mod(x0, cw);
         for (int64_t left = region.width; left > 0;) {
             const int64_t n = std::min(cw - offset, left);
-            std::memcpy(dst, cell_row + 3 * offset, size_t(3 * n));
-            dst += 3 * n, left -= n, offset = 0;
+            std::memcpy(dst, cell_row + px_bytes * offset, size_t(px_bytes * n));
+            dst += px_bytes * n, left -= n, offset = 0;
         }
     }
 
@@ -65,8 +66,9 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
                             const int64_t a = std::max(px + run.x, x0);
                             const int64_t b = std::min(px + run.x + run.length, x1);
                             if (a >= b) continue;
-                            std::memcpy(dst + 3 * (a - x0), src + 3 * (p.src_x + (a - px)),
-                                        size_t(3 * (b - a)));
+                            std::memcpy(dst + px_bytes * (a - x0),
+                                        src + px_bytes * (p.src_x + (a - px)),
+                                        size_t(px_bytes * (b - a)));
                         }
                     }
                 }
@@ -89,7 +91,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
                    size_t stride, int threads) {
     check_region(region);
     if (region.width == 0 || region.height == 0) return;
-    if (stride < size_t(region.width) * 3)
+    if (stride < size_t(region.width) * map.source.elemSize())
         throw SynthError("row stride " + std::to_string(stride) + " is shorter than a row");
 
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -108,7 +110,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
 
 cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads) {
     check_region(region);
-    cv::Mat out(region.height, region.width, CV_8UC3);
+    cv::Mat out(region.height, region.width, map.source.type());
     render_region(map, seed, region, out.data, out.step[0], threads);
     return out;
 }

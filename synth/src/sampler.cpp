@@ -37,6 +37,11 @@ const std::vector<uint16_t>& Sampler::active(CellType type, CellIndex cell) {
 }
 
 Rgb Sampler::sample(int64_t x, int64_t y) {
+    const uint8_t* p = pixel(x, y);
+    return {p[0], p[1], p[2]};
+}
+
+const uint8_t* Sampler::pixel(int64_t x, int64_t y) {
     detail::check_plane_point(x, y);
     const CellGrid grid(map_.cell_width, map_.cell_height);
     const CellImage& image = map_.cell_images.front();
@@ -54,13 +59,12 @@ Rgb Sampler::sample(int64_t x, int64_t y) {
             const int64_t bx = px - p.x, by = py - p.y;
             if (bx < 0 || by < 0 || bx >= p.width || by >= p.height) continue;
             if (!p.covers(int(bx), int(by))) continue;
-            const uint8_t* s = map_.source.ptr<uint8_t>(p.src_y + int(by)) + 3 * (p.src_x + bx);
-            return {s[0], s[1], s[2]};
+            return map_.source.ptr<uint8_t>(p.src_y + int(by)) +
+                   map_.source.elemSize() * size_t(p.src_x + bx);
         }
     }
-    const uint8_t* c = image.rgb.ptr<uint8_t>(int(detail::floor_mod(y, grid.cell_height()))) +
-                       3 * detail::floor_mod(x, grid.cell_width());
-    return {c[0], c[1], c[2]};
+    return image.rgb.ptr<uint8_t>(int(detail::floor_mod(y, grid.cell_height()))) +
+           image.rgb.elemSize() * size_t(detail::floor_mod(x, grid.cell_width()));
 }
 
 }  // namespace tilejet::synth

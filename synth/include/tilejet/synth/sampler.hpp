@@ -36,7 +36,10 @@ class Sampler {
     Sampler(const TextureMap& map, uint64_t seed);
     Sampler(const Sampler&) = delete;  // it points into its own memo
     Sampler& operator=(const Sampler&) = delete;
-    Rgb sample(int64_t x, int64_t y);
+    Rgb sample(int64_t x, int64_t y);  // for maps in RGB
+    // The pixel's bytes in the map's own pixel format (R,G,B, or C,M,Y,K for a map converted
+    // by the colour module). Valid while the map lives.
+    const uint8_t* pixel(int64_t x, int64_t y);
 
   private:
     struct Memo {
@@ -65,7 +68,8 @@ std::vector<uint16_t> active_patches(const TextureMap& map, uint64_t seed, CellT
 // Which cell's diamond holds pixel (x, y), for each cell type.
 CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t y);
 
-// Renders `region` as interleaved 8-bit R,G,B rows `stride` bytes apart.
+// Renders `region` as rows `stride` bytes apart, in the map's pixel format: interleaved 8-bit
+// R,G,B, or C,M,Y,K for a map whose images the colour module converted.
 // `threads` 0 means all cores.
 void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
                    size_t stride, int threads = 0);

@@ -58,7 +58,7 @@ enum class CellType : uint8_t { A = 0, B = 1 };
 // A seamless, toroidally wrapping image of one cell's size with its own two patch sets.
 // Today a map holds one; the format and sampler keep room for a Wang set (design.md section 9).
 struct CellImage {
-    cv::Mat rgb;  // CV_8UC3, R,G,B byte order
+    cv::Mat rgb;  // CV_8UC3, R,G,B byte order (CV_8UC4 C,M,Y,K once converted for a line)
     PatchSet a, b;
     const PatchSet& set(CellType t) const { return t == CellType::A ? a : b; }
 };
@@ -74,7 +74,7 @@ struct BuildRecord {
 
 struct TextureMap {
     int cell_width = 0, cell_height = 0;
-    cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from
+    cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
     std::vector<CellImage> cell_images;
     BuildRecord build;
     std::array<uint8_t, 32> id{};  // SHA-256 of the content; seeds activation hashing

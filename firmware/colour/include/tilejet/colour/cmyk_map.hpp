@@ -1,0 +1,33 @@
+#pragma once
+
+// Convert once, copy many (design.md section 4): rendering only copies pixels of the map's cell
+// image and source, so converting those to CMYK once gives, byte for byte, what transforming
+// every rendered pixel would, at copy speed. synth::render_region on a converted map renders
+// C,M,Y,K directly.
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+
+#include "tilejet/colour/cmyk_transform.hpp"
+#include "tilejet/synth/texture_map.hpp"
+
+namespace tilejet::colour {
+
+std::shared_ptr<const synth::TextureMap> convert_map(const synth::TextureMap& map,
+                                                     const CmykTransform& transform);
+
+// Converted maps kept by (map id, transform key). Thread-safe.
+class CmykMapCache {
+  public:
+    std::shared_ptr<const synth::TextureMap> get(const synth::TextureMap& map,
+                                                 const CmykTransform& transform);
+    size_t size() const;
+
+  private:
+    mutable std::mutex mutex_;
+    std::unordered_map<std::string, std::shared_ptr<const synth::TextureMap>> maps_;
+};
+
+}  // namespace tilejet::colour

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "lcms_context.hpp"
+
+namespace tilejet::colour::detail {
+
+// An ICC profile read from a file and checked before LittleCMS sees it: big enough for a header,
+// the 'acsp' signature, the header's size not beyond the file, and the colour space asked for.
+struct IccProfile {
+    std::vector<uint8_t> bytes;
+    Profile handle;
+};
+
+// `role` names the profile in messages ("output profile", "source profile", ...).
+// `space` is the data colour space the role needs (cmsSigCmykData, cmsSigRgbData, ...).
+IccProfile load_icc_profile(LcmsContext& lcms, const std::filesystem::path& path, const char* role,
+                            cmsColorSpaceSignature space);
+
+}  // namespace tilejet::colour::detail

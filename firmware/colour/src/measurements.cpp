@@ -1,0 +1,46 @@
+#include "tilejet/colour/measurements.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include "lcms_context.hpp"
+#include "tilejet/colour/cmyk_transform.hpp"
+
+namespace tilejet::colour {
+
+std::vector<Measurement> read_measurements(const std::filesystem::path& path) {
+    const std::string where = "measurements '" + path.string() + "'";
+    if (!std::ifstream(path))
+        throw ColourError("cannot read " + where + ": " + std::strerror(errno));
+    detail::LcmsContext lcms;
+    // LittleCMS's CGATS parser (cmsIT8) reads Argyll's .ti3 as well as IT8 files.
+    detail::It8 it8(cmsIT8LoadFromFile(lcms.get(), path.string().c_str()));
+    if (!it8) {
+        const std::string why = lcms.take_error();
+        throw ColourError(where + " is not a CGATS measurement file" +
+                          (why.empty() ? "" : ": " + why));
+    }
+    const char* fields[] = {"CMYK_C", "CMYK_M", "CMYK_Y", "CMYK_K", "LAB_L", "LAB_A", "LAB_B"};
+    int column[7];
+    for (int f = 0; f < 7; ++f) {
+        column[f] = cmsIT8FindDataFormat(it8.get(), fields[f]);
+        if (column[f] < 0)
+            throw ColourError(where + " has no " + fields[f] + " field: a line profile needs the " +
+                              (f < 4 ? "CMYK ink values" : "measured Lab values") +
+                              " of each patch");
+    }
+    const int rows = int(cmsIT8GetPropertyDbl(it8.get(), "NUMBER_OF_SETS"));
+    if (rows <= 0) throw ColourError(where + " holds no measured patches");
+    std::vector<Measurement> out(static_cast<size_t>(rows));
+    for (int r = 0; r < rows; ++r) {
+        double v[7];
+        for (int f = 0; f < 7; ++f)
+            v[f] = cmsIT8GetDataRowColDbl(it8.get(), r, column[f]);
+        out[size_t(r)] = {v[0], v[1], v[2], v[3], v[4], v[5], v[6]};
+    }
+    return out;
+}
+
+}  // namespace tilejet::colour
