@@ -7,7 +7,9 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "embedded_profile.hpp"
 #include "tilejet/synth/error.hpp"
+#include "to_srgb.hpp"
 
 namespace tilejet::synth {
 
@@ -49,6 +51,10 @@ cv::Mat load_exemplar(const std::filesystem::path& path) {
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
     check_exemplar(rgb, name);
+    // Texture maps are sRGB: a photo in Adobe RGB or a camera profile is converted on intake,
+    // so the colour module's default source profile is right for every map.
+    const std::vector<uint8_t> icc = detail::read_embedded_profile(path);
+    if (!icc.empty()) detail::convert_to_srgb(rgb, icc, name);
     return rgb;
 }
 
