@@ -111,13 +111,19 @@ std::vector<uint8_t> from_tiff(const std::filesystem::path& path) {
 
 std::vector<uint8_t> read_embedded_profile(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
-    std::vector<uint8_t> f((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
-        return from_png(f, path);
-    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return from_jpeg(f, path);
+    const std::vector<uint8_t> f((std::istreambuf_iterator<char>(in)),
+                                 std::istreambuf_iterator<char>());
     if (f.size() >= 4 &&
         (std::memcmp(f.data(), "II*\0", 4) == 0 || std::memcmp(f.data(), "MM\0*", 4) == 0))
         return from_tiff(path);
+    return parse_embedded_profile(f, path);
+}
+
+std::vector<uint8_t> parse_embedded_profile(const std::vector<uint8_t>& f,
+                                            const std::filesystem::path& path) {
+    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
+        return from_png(f, path);
+    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return from_jpeg(f, path);
     return {};
 }
 

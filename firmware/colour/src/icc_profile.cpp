@@ -38,11 +38,21 @@ const char* space_name(cmsColorSpaceSignature s) {
 
 IccProfile load_icc_profile(LcmsContext& lcms, const std::filesystem::path& path, const char* role,
                             cmsColorSpaceSignature space) {
-    const std::string where = std::string(role) + " '" + path.string() + "'";
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw ColourError("cannot read " + where + ": " + std::strerror(errno));
+    if (!in)
+        throw ColourError("cannot read " + std::string(role) + " '" + path.string() +
+                          "': " + std::strerror(errno));
+    return parse_icc_profile(lcms,
+                             {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()},
+                             path, role, space);
+}
+
+IccProfile parse_icc_profile(LcmsContext& lcms, std::vector<uint8_t> bytes,
+                             const std::filesystem::path& path, const char* role,
+                             cmsColorSpaceSignature space) {
+    const std::string where = std::string(role) + " '" + path.string() + "'";
     IccProfile p;
-    p.bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    p.bytes = std::move(bytes);
     if (p.bytes.size() < kIccHeaderBytes || std::memcmp(p.bytes.data() + 36, "acsp", 4) != 0)
         throw ColourError(where + " is not an ICC profile (no 'acsp' signature)");
     const uint32_t declared = be32(p.bytes.data());

@@ -19,5 +19,9 @@ struct IccProfile {
 // `space` is the data colour space the role needs (cmsSigCmykData, cmsSigRgbData, ...).
 IccProfile load_icc_profile(LcmsContext& lcms, const std::filesystem::path& path, const char* role,
                             cmsColorSpaceSignature space);
+// The same checks on bytes already read; `path` only names them in messages.
+IccProfile parse_icc_profile(LcmsContext& lcms, std::vector<uint8_t> bytes,
+                             const std::filesystem::path& path, const char* role,
+                             cmsColorSpaceSignature space);
 
 }  // namespace tilejet::colour::detail

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace tilejet::colour {
@@ -16,5 +19,8 @@ struct Measurement {
 // CMYK_M, CMYK_Y, CMYK_K, LAB_L, LAB_A, LAB_B. Throws ColourError naming the file and any
 // missing field.
 std::vector<Measurement> read_measurements(const std::filesystem::path& path);
+// The same from bytes already read; `name` names them in messages.
+std::vector<Measurement> parse_measurements(std::span<const uint8_t> bytes,
+                                            const std::string& name);
 
 }  // namespace tilejet::colour
