@@ -12,12 +12,21 @@
 namespace tilejet::colour {
 
 std::vector<Measurement> read_measurements(const std::filesystem::path& path) {
-    const std::string where = "measurements '" + path.string() + "'";
-    if (!std::ifstream(path))
-        throw ColourError("cannot read " + where + ": " + std::strerror(errno));
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw ColourError("cannot read measurements '" + path.string() +
+                          "': " + std::strerror(errno));
+    const std::vector<uint8_t> bytes{std::istreambuf_iterator<char>(in),
+                                     std::istreambuf_iterator<char>()};
+    return parse_measurements(bytes, path.string());
+}
+
+std::vector<Measurement> parse_measurements(std::span<const uint8_t> bytes, const std::string& name) {
+    const std::string where = "measurements '" + name + "'";
+    if (bytes.empty()) throw ColourError(where + " is an empty file");
     detail::LcmsContext lcms;
     // LittleCMS's CGATS parser (cmsIT8) reads Argyll's .ti3 as well as IT8 files.
-    detail::It8 it8(cmsIT8LoadFromFile(lcms.get(), path.string().c_str()));
+    detail::It8 it8(cmsIT8LoadFromMem(lcms.get(), bytes.data(), cmsUInt32Number(bytes.size())));
     if (!it8) {
         const std::string why = lcms.take_error();
         throw ColourError(where + " is not a CGATS measurement file" +
