@@ -64,6 +64,13 @@ TEST_CASE("unusable output profiles fail naming the file", "[colour][profile]") 
     REQUIRE_THAT(transform_error(dir / "missing.icc"),
                  Contains("missing.icc") && Contains("cannot read"));
 
+    // Regression (fuzzing): a colour space outside LittleCMS's enum was undefined behaviour.
+    std::string odd_space = good;
+    odd_space.replace(16, 4, "\xFF\xFF\xFF\xFF");
+    test::write_file(dir / "odd-space.icc", odd_space);
+    REQUIRE_THAT(transform_error(dir / "odd-space.icc"),
+                 Contains("odd-space.icc") && Contains("unsupported colour space"));
+
     std::string damaged = good;  // a valid header over garbage tags
     for (size_t i = 132; i < damaged.size(); ++i)
         damaged[i] = char(0xA5);

@@ -17,7 +17,7 @@ uint32_t be32(const uint8_t* p) {
     return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
 }
 
-const char* space_name(cmsColorSpaceSignature s) {
+const char* space_name(uint32_t s) {
     switch (s) {
         case cmsSigCmykData:
             return "CMYK";
@@ -59,15 +59,17 @@ IccProfile parse_icc_profile(LcmsContext& lcms, std::vector<uint8_t> bytes,
     if (declared > p.bytes.size())
         throw ColourError(where + " is truncated: its header says " + std::to_string(declared) +
                           " bytes, the file has " + std::to_string(p.bytes.size()));
+    // The data colour space is read from the header as a plain number: LittleCMS hands it back
+    // as an enum, and a crafted file can hold a value outside it (found by fuzzing).
+    const uint32_t actual = be32(p.bytes.data() + 16);
+    if (actual != uint32_t(space))
+        throw ColourError(where + " is " + space_name(actual) + "; the " + role + " must be " +
+                          space_name(uint32_t(space)));
     p.handle.reset(cmsOpenProfileFromMemTHR(lcms.get(), p.bytes.data(), cmsUInt32Number(declared)));
     if (!p.handle) {
         const std::string why = lcms.take_error();
         throw ColourError(where + " cannot be read by LittleCMS" + (why.empty() ? "" : ": " + why));
     }
-    const cmsColorSpaceSignature actual = cmsGetColorSpace(p.handle.get());
-    if (actual != space)
-        throw ColourError(where + " is " + space_name(actual) + "; the " + role + " must be " +
-                          space_name(space));
     return p;
 }
 
