@@ -9,6 +9,7 @@ namespace tilejet::cli {
 void add_map_commands(CLI::App& app);
 void add_render_commands(CLI::App& app);
 void add_profile_commands(CLI::App& app);
+void add_analyze_commands(CLI::App& app);
 void add_line_commands(CLI::App& app);
 void add_sim_commands(CLI::App& app);
 

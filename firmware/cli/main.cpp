@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
     tilejet::cli::add_map_commands(app);
     tilejet::cli::add_render_commands(app);
     tilejet::cli::add_profile_commands(app);
+    tilejet::cli::add_analyze_commands(app);
     tilejet::cli::add_line_commands(app);
     tilejet::cli::add_sim_commands(app);
     try {

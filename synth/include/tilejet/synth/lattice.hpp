@@ -1,0 +1,32 @@
+#pragma once
+
+// Lattices of near-regular exemplars (design.md section 7): brick, mosaics, tiled floors and
+// textiles repeat along two translation vectors v1, v2 (the lattice), with variation.
+
+#include <array>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string_view>
+
+namespace tilejet::synth {
+
+enum class LatticeKind { Regular, NearRegular, Stochastic };
+std::string_view lattice_kind_name(LatticeKind kind);
+
+struct Lattice {
+    cv::Point v1{1, 0}, v2{0, 1};  // integer pixel vectors; (1,0), (0,1) when stochastic
+    double score = 0;              // mean^alpha * n^(alpha-1) of the chosen pair (0: none)
+    LatticeKind kind = LatticeKind::Stochastic;
+    // Regularity when a lattice exists: G (geometry) is the mean normalized correlation of the
+    // exemplar with itself shifted by the lattice's vectors; A (appearance) is how alike the
+    // lattice's tiles look, 1 minus their variance about the mean tile relative to the image's.
+    std::optional<double> geometry_regularity, appearance_regularity;
+    int area() const { return std::abs(v1.x * v2.y - v1.y * v2.x); }
+};
+
+// Detects the lattice of `rgb` (CV_8UC3) by the generalized normalized cross-correlation of
+// the image with itself over every overlap (FFT for the cross term, summed-area tables for the
+// means and energies, channels weighted by their energy), then scores pairs of its peaks.
+Lattice detect_lattice(const cv::Mat& rgb);
+
+}  // namespace tilejet::synth

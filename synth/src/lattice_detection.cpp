@@ -1,0 +1,241 @@
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <tuple>
+#include <vector>
+
+#include "tilejet/synth/lattice.hpp"
+
+namespace tilejet::synth {
+
+namespace {
+
+constexpr double kAlpha = 1.12;         // score = mean^alpha * n^(alpha - 1)
+constexpr double kTileCoverage = 0.85;  // a value counts if its overlap covers 85% of a tile
+constexpr double kMinPeak = 0.1;        // correlation peaks weaker than this are noise
+constexpr double kNearRegular = 0.3;    // mean correlation at lattice points: a lattice at all
+constexpr double kRegular = 0.75;       // ... and a strict one
+constexpr int kMinPeriod = 4;           // px; shorter repeats are grain, not a lattice
+constexpr size_t kMaxPeaks = 24;
+constexpr double kBlurSigma = 1.0;  // px
+
+// The generalized normalized cross-correlation of the image with itself, for every displacement
+// whose overlap spans at least a third of the image each way. Also the appearance term: mean
+// squared difference over the overlap relative to twice the variance.
+class SelfCorrelation {
+  public:
+    explicit SelfCorrelation(const cv::Mat& rgb) : w_(rgb.cols), h_(rgb.rows) {
+        max_dx_ = w_ - std::max(1, w_ / 3);
+        max_dy_ = h_ - std::max(1, h_ / 3);
+        ncc_ = cv::Mat(2 * max_dy_ + 1, 2 * max_dx_ + 1, CV_64F, cv::Scalar(0));
+        msd_ = cv::Mat(ncc_.size(), CV_64F, cv::Scalar(0));
+
+        std::vector<cv::Mat> channels;
+        cv::Mat unit;
+        rgb.convertTo(unit, CV_64FC3, 1.0 / 255);
+        // A light blur: real lattices fall between pixels, and sharp edges would make every
+        // half-pixel misalignment look like a poor repeat; it also quietens sensor noise.
+        cv::GaussianBlur(unit, unit, cv::Size(0, 0), kBlurSigma);
+        cv::split(unit, channels);
+        double energy[3], total = 0;
+        for (int c = 0; c < 3; ++c) {
+            cv::Scalar mean, sd;
+            cv::meanStdDev(channels[size_t(c)], mean, sd);
+            energy[c] = sd[0] * sd[0];
+            total += energy[c];
+        }
+        flat_ = total < 1e-10;
+        if (flat_) return;
+        for (int c = 0; c < 3; ++c)
+            if (energy[c] > 1e-12 * total) add_channel(channels[size_t(c)], energy[c] / total);
+    }
+
+    bool flat() const { return flat_; }
+    int max_dx() const { return max_dx_; }
+    int max_dy() const { return max_dy_; }
+    bool in_range(cv::Point d) const {
+        return std::abs(d.x) <= max_dx_ && std::abs(d.y) <= max_dy_;
+    }
+    double ncc(cv::Point d) const { return ncc_.at<double>(d.y + max_dy_, d.x + max_dx_); }
+    double msd(cv::Point d) const { return msd_.at<double>(d.y + max_dy_, d.x + max_dx_); }
+    double overlap(cv::Point d) const { return double(w_ - std::abs(d.x)) * (h_ - std::abs(d.y)); }
+
+  private:
+    void add_channel(const cv::Mat& plane, double weight) {
+        // Cross term for all displacements at once: autocorrelation by FFT, zero-padded so it
+        // does not wrap.
+        const cv::Size size(cv::getOptimalDFTSize(2 * w_), cv::getOptimalDFTSize(2 * h_));
+        cv::Mat padded(size, CV_64F, cv::Scalar(0)), spectrum, power, auto_corr;
+        plane.copyTo(padded(cv::Rect(0, 0, w_, h_)));
+        cv::dft(padded, spectrum);
+        cv::mulSpectrums(spectrum, spectrum, power, 0, true);
+        cv::dft(power, auto_corr, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+        cv::Mat sum, sqsum;
+        cv::integral(plane, sum, sqsum, CV_64F, CV_64F);
+        auto rect = [](const cv::Mat& s, int x, int y, int w, int h) {
+            return s.at<double>(y + h, x + w) - s.at<double>(y, x + w) - s.at<double>(y + h, x) +
+                   s.at<double>(y, x);
+        };
+        for (int dy = -max_dy_; dy <= max_dy_; ++dy)
+            for (int dx = -max_dx_; dx <= max_dx_; ++dx) {
+                const int ow = w_ - std::abs(dx), oh = h_ - std::abs(dy);
+                const int ax = std::max(0, -dx), ay = std::max(0, -dy);  // p runs over A
+                const int bx = std::max(0, dx), by = std::max(0, dy);    // p + d over B
+                const double n = double(ow) * oh;
+                const double sa = rect(sum, ax, ay, ow, oh), sb = rect(sum, bx, by, ow, oh);
+                const double qa = rect(sqsum, ax, ay, ow, oh), qb = rect(sqsum, bx, by, ow, oh);
+                const double cross = auto_corr.at<double>((dy + size.height) % size.height,
+                                                          (dx + size.width) % size.width);
+                const double cov = cross - sa * sb / n;
+                const double va = qa - sa * sa / n, vb = qb - sb * sb / n;
+                const double ncc = va > 1e-12 && vb > 1e-12 ? cov / std::sqrt(va * vb) : 0;
+                const double msd = (qa + qb - 2 * cross) / n / std::max(1e-12, (va + vb) / n);
+                ncc_.at<double>(dy + max_dy_, dx + max_dx_) += weight * ncc;
+                msd_.at<double>(dy + max_dy_, dx + max_dx_) += weight * msd;
+            }
+    }
+
+    int w_, h_, max_dx_ = 0, max_dy_ = 0;
+    bool flat_ = false;
+    cv::Mat ncc_, msd_;
+};
+
+bool upper_half(cv::Point d) {
+    return d.y > 0 || (d.y == 0 && d.x > 0);
+}
+double length2(cv::Point p) {
+    return double(p.x) * p.x + double(p.y) * p.y;
+}
+
+std::vector<cv::Point> correlation_peaks(const SelfCorrelation& sc) {
+    std::vector<std::pair<double, cv::Point>> peaks;
+    for (int dy = 0; dy <= sc.max_dy(); ++dy)
+        for (int dx = -sc.max_dx(); dx <= sc.max_dx(); ++dx) {
+            const cv::Point d(dx, dy);
+            if (!upper_half(d) || length2(d) < kMinPeriod * kMinPeriod) continue;
+            const double v = sc.ncc(d);
+            if (v < kMinPeak) continue;
+            bool is_max = true;
+            for (int ny = -1; ny <= 1 && is_max; ++ny)
+                for (int nx = -1; nx <= 1 && is_max; ++nx) {
+                    const cv::Point n(dx + nx, dy + ny);
+                    if ((nx || ny) && sc.in_range(n) && sc.ncc(n) > v) is_max = false;
+                }
+            if (is_max) peaks.emplace_back(v, d);
+        }
+    // The strongest peaks are often far multiples that happen to fall on whole pixels; the
+    // fundamental vectors are the short ones among the strong. Keep the peaks at least half as
+    // strong as the strongest, shortest first; the pair score then chooses.
+    double strongest = 0;
+    for (const auto& p : peaks)
+        strongest = std::max(strongest, p.first);
+    std::erase_if(peaks, [&](const auto& p) { return p.first < 0.5 * strongest; });
+    std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) {
+        const double la = length2(a.second), lb = length2(b.second);
+        return la != lb ? la < lb
+                        : std::tie(a.second.y, a.second.x) < std::tie(b.second.y, b.second.x);
+    });
+    std::vector<cv::Point> out;
+    for (size_t i = 0; i < peaks.size() && i < kMaxPeaks; ++i)
+        out.push_back(peaks[i].second);
+    return out;
+}
+
+// Lagrange-Gauss reduction: the shortest basis of the lattice the pair generates, so that
+// (v1, v2), (v2, v1), (v1, v1 + v2) ... all become one candidate.
+std::pair<cv::Point, cv::Point> reduce(cv::Point a, cv::Point b) {
+    for (int guard = 0; guard < 64; ++guard) {
+        if (length2(b) < length2(a)) std::swap(a, b);
+        const double m = std::round((double(a.x) * b.x + double(a.y) * b.y) / length2(a));
+        if (m == 0) break;
+        b -= cv::Point(int(m) * a.x, int(m) * a.y);
+    }
+    if (!upper_half(a)) a = -a;
+    if (!upper_half(b)) b = -b;
+    return {a, b};
+}
+
+struct PairScore {
+    double score = 0, mean_ncc = 0, mean_msd = 0;
+    int n = 0;
+};
+
+PairScore score_pair(const SelfCorrelation& sc, cv::Point v1, cv::Point v2, double tile_area) {
+    PairScore s;
+    const int reach =
+        int(std::max(sc.max_dx(), sc.max_dy()) / std::sqrt(std::min(length2(v1), length2(v2)))) + 1;
+    const int r = std::min(reach, 64);
+    for (int i = -r; i <= r; ++i)
+        for (int j = -r; j <= r; ++j) {
+            const cv::Point d(i * v1.x + j * v2.x, i * v1.y + j * v2.y);
+            if (!upper_half(d) || !sc.in_range(d)) continue;
+            if (sc.overlap(d) < kTileCoverage * tile_area) continue;
+            // Real lattices are rarely whole pixels (a hexagonal mosaic's rows are 0.866 of a
+            // period apart): each multiple counts at its best pixel within +-1.
+            double best_ncc = -1, best_msd = 0;
+            for (int ny = -1; ny <= 1; ++ny)
+                for (int nx = -1; nx <= 1; ++nx) {
+                    const cv::Point q = d + cv::Point(nx, ny);
+                    if (sc.in_range(q) && sc.ncc(q) > best_ncc)
+                        best_ncc = sc.ncc(q), best_msd = sc.msd(q);
+                }
+            s.mean_ncc += best_ncc;
+            s.mean_msd += best_msd;
+            ++s.n;
+        }
+    if (s.n < 2) return {};
+    s.mean_ncc /= s.n;
+    s.mean_msd /= s.n;
+    if (s.mean_ncc <= 0) return {};
+    s.score = std::pow(s.mean_ncc, kAlpha) * std::pow(double(s.n), kAlpha - 1);
+    return s;
+}
+
+}  // namespace
+
+std::string_view lattice_kind_name(LatticeKind kind) {
+    switch (kind) {
+        case LatticeKind::Regular:
+            return "regular";
+        case LatticeKind::NearRegular:
+            return "near-regular";
+        case LatticeKind::Stochastic:
+            return "stochastic";
+    }
+    return "stochastic";
+}
+
+Lattice detect_lattice(const cv::Mat& rgb) {
+    CV_Assert(rgb.type() == CV_8UC3);
+    Lattice stochastic;
+    const SelfCorrelation sc(rgb);
+    if (sc.flat()) return stochastic;
+    const std::vector<cv::Point> peaks = correlation_peaks(sc);
+
+    std::map<std::tuple<int, int, int, int>, bool> seen;
+    PairScore best;
+    cv::Point best_v1, best_v2;
+    for (size_t a = 0; a < peaks.size(); ++a)
+        for (size_t b = a + 1; b < peaks.size(); ++b) {
+            const int det = peaks[a].x * peaks[b].y - peaks[a].y * peaks[b].x;
+            if (std::abs(det) < kMinPeriod * kMinPeriod) continue;
+            auto [v1, v2] = reduce(peaks[a], peaks[b]);
+            if (!seen.emplace(std::tuple{v1.x, v1.y, v2.x, v2.y}, true).second) continue;
+            if (length2(v1) < kMinPeriod * kMinPeriod) continue;
+            const PairScore s = score_pair(sc, v1, v2, std::abs(double(det)));
+            if (s.score > best.score) best = s, best_v1 = v1, best_v2 = v2;
+        }
+    if (best.score <= 0 || best.mean_ncc < kNearRegular) return stochastic;
+
+    Lattice l;
+    l.v1 = best_v1, l.v2 = best_v2;
+    l.score = best.score;
+    l.kind = best.mean_ncc >= kRegular ? LatticeKind::Regular : LatticeKind::NearRegular;
+    l.geometry_regularity = best.mean_ncc;
+    l.appearance_regularity = std::clamp(1.0 - best.mean_msd, 0.0, 1.0);
+    return l;
+}
+
+}  // namespace tilejet::synth
