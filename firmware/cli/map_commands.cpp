@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -87,6 +88,13 @@ void add_map_commands(CLI::App& app) {
                   "expected active patches per cell, eta * |set| (default 10)");
     b->add_option("--seed", build->params.seed, "build seed (default 1)");
     b->add_option("--threads", build->params.threads, "threads (default: all cores)");
+    b->add_option("--lattice", build->params.lattice,
+                  "auto (default): keep a near-regular exemplar's lattice; off")
+        ->transform(CLI::CheckedTransformer(
+            std::map<std::string, synth::BuildParams::Lattice>{
+                {"auto", synth::BuildParams::Lattice::Auto},
+                {"off", synth::BuildParams::Lattice::Off}},
+            CLI::ignore_case));
     b->callback([build] { run_build(*build); });
 
     auto info_path = std::make_shared<std::string>();

@@ -5,16 +5,19 @@
 #include <chrono>
 #include <cmath>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <thread>
 
 #include "candidate_patch.hpp"
 #include "lab.hpp"
+#include "lattice_alignment.hpp"
 #include "mix64.hpp"
 #include "patch_overlap.hpp"
 #include "pseudo_biclique.hpp"
 #include "quilting.hpp"
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/map_file.hpp"
 
 namespace tilejet::synth {
@@ -148,7 +151,7 @@ double cell_image_score(const cv::Mat& cell_lab, const cv::Scalar& exemplar_mean
     return score + sd[0];
 }
 
-cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, int cell,
+cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, cv::Size cell,
                          const QuiltParams& quilt, uint64_t seed) {
     constexpr int kTrials = 24;
     const cv::Scalar exemplar_mean = cv::mean(exemplar_lab);
@@ -156,7 +159,7 @@ cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, i
     double best_score = 0;
     for (int t = 0; t < kTrials; ++t) {
         Rng rng(hash_combine(hash_combine(seed, kCellStream), uint64_t(t)));
-        cv::Mat candidate = quilt_toroidal(exemplar, exemplar_lab, {cell, cell}, quilt, rng);
+        cv::Mat candidate = quilt_toroidal(exemplar, exemplar_lab, cell, quilt, rng);
         const double score = cell_image_score(to_lab(candidate), exemplar_mean);
         if (best.empty() || score < best_score) best = candidate, best_score = score;
     }
@@ -171,30 +174,51 @@ TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
     check_params(params, exemplar);
     const int threads = params.threads > 0 ? params.threads
                                            : int(std::max(1u, std::thread::hardware_concurrency()));
-    const int cell = params.cell_size
-                         ? params.cell_size
-                         : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
+    const int square = params.cell_size
+                           ? params.cell_size
+                           : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
     const int candidates =
         params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
 
+    // Near-regular exemplars get cells whose sides are lattice vectors, so that every cell
+    // starts on the same phase of the pattern, and copies that move by lattice translations.
+    std::optional<LatticeTranslations> lattice;
+    cv::Size cell_size(square, square);
+    if (params.lattice == BuildParams::Lattice::Auto) {
+        if (progress) progress("lattice", 0, 1);
+        const Lattice detected = detect_lattice(exemplar);
+        if (detected.kind != LatticeKind::Stochastic) {
+            LatticeTranslations translations(detected);
+            if (auto rect = translations.cell_size(square, exemplar.size())) {
+                lattice = translations;
+                cell_size = *rect;
+            }
+        }
+    }
+    const int cell = std::min(cell_size.width, cell_size.height);
+
     TextureMap map;
-    map.cell_width = map.cell_height = cell;
+    map.cell_width = cell_size.width;
+    map.cell_height = cell_size.height;
     map.build = {params.seed,    exemplar.cols, exemplar.rows,
                  params.patches, candidates,    params.active_per_cell};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
-    const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6)};
+    const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,
+                            lattice ? &*lattice : nullptr};
     if (progress) progress("cell image", 0, 1);
     CellImage image;
-    image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell, quilt, params.seed);
+    image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell_size, quilt, params.seed);
 
     // Patches need room around them in the source; small exemplars are enlarged first.
-    if (exemplar.cols < 2 * cell || exemplar.rows < 2 * cell) {
+    if (exemplar.cols < 2 * cell_size.width || exemplar.rows < 2 * cell_size.height) {
         if (progress) progress("source image", 0, 1);
         Rng source_rng(hash_combine(params.seed, kSourceStream));
+        // A multiple of the cell size, so that the enlargement wraps on the lattice too.
         map.source =
             quilt_toroidal(exemplar, exemplar_lab,
-                           {std::max(exemplar.cols, 2 * cell), std::max(exemplar.rows, 2 * cell)},
+                           {std::max(exemplar.cols / cell_size.width + 1, 2) * cell_size.width,
+                            std::max(exemplar.rows / cell_size.height + 1, 2) * cell_size.height},
                            quilt, source_rng);
     } else {
         map.source = exemplar.clone();
@@ -202,8 +226,12 @@ TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
 
     const cv::Mat cell_lab = to_lab(image.rgb), source_lab = to_lab(map.source);
     const int source_side = std::min(map.source.cols, map.source.rows);
-    CandidateSpace space{cell_lab, source_lab, CellGrid(cell, cell), 2,
-                         std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3))};
+    CandidateSpace space{cell_lab,
+                         source_lab,
+                         CellGrid(cell_size.width, cell_size.height),
+                         2,
+                         std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3)),
+                         lattice ? &*lattice : nullptr};
     const std::vector<Patch> kept = best_candidates(space, params, candidates, threads, progress);
 
     // Which pairs may not be split across A and B: a B cell sits left, right, above or below
@@ -213,11 +241,12 @@ TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
     parallel_for(
         n, threads,
         [&](size_t u, int) {
+            const int cw = cell_size.width, ch = cell_size.height;
             for (size_t v = 0; v < n; ++v)
-                conflict[u * n + v] = patches_overlap(kept[u], kept[v], cell, 0) ||
-                                      patches_overlap(kept[u], kept[v], -cell, 0) ||
-                                      patches_overlap(kept[u], kept[v], 0, cell) ||
-                                      patches_overlap(kept[u], kept[v], 0, -cell);
+                conflict[u * n + v] = patches_overlap(kept[u], kept[v], cw, 0) ||
+                                      patches_overlap(kept[u], kept[v], -cw, 0) ||
+                                      patches_overlap(kept[u], kept[v], 0, ch) ||
+                                      patches_overlap(kept[u], kept[v], 0, -ch);
         },
         progress, "A/B conflicts");
     Rng split_rng(hash_combine(params.seed, kSplitStream));

@@ -51,7 +51,14 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
                  space.grid.in_diamond_interior(px + core, py + core);
     }
     if (!placed) return std::nullopt;
-    const int qx = rng.range(R, src.cols - 1 - R), qy = rng.range(R, src.rows - 1 - R);
+    int qx = rng.range(R, src.cols - 1 - R), qy = rng.range(R, src.rows - 1 - R);
+    if (space.lattice) {
+        const cv::Point q =
+            cv::Point(px, py) + space.lattice->near({double(qx - px), double(qy - py)}, rng);
+        if (q.x < R || q.y < R || q.x > src.cols - 1 - R || q.y > src.rows - 1 - R)
+            return std::nullopt;
+        qx = q.x, qy = q.y;
+    }
 
     // Per-pixel disagreement between the cell image (wrapped) and the source under the window.
     std::vector<float> diff(static_cast<size_t>(side) * side);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "diamond.hpp"
+#include "lattice_alignment.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::synth::detail {
@@ -15,6 +16,9 @@ struct CandidateSpace {
     CellGrid grid;
     int min_radius = 2;  // patch size r is drawn log-uniformly in [min_radius, max_radius]
     int max_radius = 21;
+    // Near-regular exemplars: the source offset q - p is a lattice translation (+-3 px), so a
+    // patch brings bricks that line up with the courses around it. Null: any offset.
+    const LatticeTranslations* lattice = nullptr;
 };
 
 // Candidate number `seed` (design.md section 2.4): a random cell position p, source position q

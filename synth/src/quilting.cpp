@@ -97,11 +97,24 @@ class BlockSearch {
         energy_spectrum_ = forward(energy);
     }
 
+    // `at` is where the block goes on the canvas: with a lattice, only exemplar positions a
+    // lattice translation away from it are eligible.
     cv::Point choose(const cv::Mat& templ, const std::vector<cv::Rect>& strips, double tolerance,
-                     Rng& rng) const {
+                     cv::Point at, const LatticeTranslations* lattice, Rng& rng) const {
         const int range_x = window_.width - templ.cols, range_y = window_.height - templ.rows;
-        if (strips.empty())
-            return window_.tl() + cv::Point(rng.range(0, range_x), rng.range(0, range_y));
+        auto allowed = [&](int x, int y) {
+            return !lattice || lattice->allows(window_.tl() + cv::Point(x, y) - at);
+        };
+        if (strips.empty()) {
+            for (int attempt = 0; attempt < 64; ++attempt) {
+                cv::Point p(rng.range(0, range_x), rng.range(0, range_y));
+                if (lattice)
+                    p = lattice->near(cv::Point2d(p + window_.tl() - at), rng) + at - window_.tl();
+                if (p.x >= 0 && p.y >= 0 && p.x <= range_x && p.y <= range_y)
+                    return window_.tl() + p;
+            }
+            return window_.tl();
+        }
 
         cv::Mat mask(templ.size(), CV_32F, cv::Scalar(0));
         for (const cv::Rect& s : strips)
@@ -122,14 +135,18 @@ class BlockSearch {
         cv::dft(acc, error, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
         error = error(cv::Rect(0, 0, range_x + 1, range_y + 1)) + constant;
 
-        double best = 0;
-        cv::minMaxLoc(error, &best);
+        double best = -1;
+        for (int y = 0; y < error.rows; ++y)
+            for (int x = 0; x < error.cols; ++x)
+                if (allowed(x, y) && (best < 0 || error.at<float>(y, x) < best))
+                    best = error.at<float>(y, x);
         best = std::max(best, 0.0);  // rounding in the FFT can dip below zero
         const double limit = best * (1 + tolerance) + 1e-3;
         std::vector<cv::Point> eligible;
         for (int y = 0; y < error.rows; ++y)
             for (int x = 0; x < error.cols; ++x)
-                if (error.at<float>(y, x) <= limit) eligible.emplace_back(x, y);
+                if (error.at<float>(y, x) <= limit && allowed(x, y)) eligible.emplace_back(x, y);
+        if (eligible.empty()) eligible.emplace_back(0, 0);
         return window_.tl() + eligible[size_t(rng.below(eligible.size()))];
     }
 
@@ -189,7 +206,8 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                     mask.at<uint8_t>(y, x) = c.filled.at<uint8_t>(cy, cx) ? 255 : 0;
                 }
             const std::vector<cv::Rect> strips = placed_strips(mask, o);
-            const cv::Point at = search.choose(templ, strips, params.tolerance, rng);
+            const cv::Point at =
+                search.choose(templ, strips, params.tolerance, {fx, fy}, params.lattice, rng);
 
             cv::Mat err(bh, bw, CV_32F, cv::Scalar(0));
             for (int y = 0; y < bh; ++y)

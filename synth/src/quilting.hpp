@@ -2,6 +2,7 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include "lattice_alignment.hpp"
 #include "mix64.hpp"
 
 namespace tilejet::synth::detail {
@@ -10,6 +11,9 @@ struct QuiltParams {
     int block = 32;          // square block side b
     int overlap = 5;         // overlap o between neighbouring blocks
     double tolerance = 0.1;  // candidates within 10% of the best overlap error are eligible
+    // Near-regular exemplars: blocks only from positions a lattice translation (+-3 px) away
+    // from where they go, so bricks stay in their courses. Null: anywhere.
+    const LatticeTranslations* lattice = nullptr;
 };
 
 // Image quilting (Efros and Freeman 2001) on a torus: blocks are laid in raster order over a

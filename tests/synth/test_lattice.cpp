@@ -7,7 +7,9 @@
 #include <random>
 
 #include "fixtures.hpp"
+#include "tilejet/synth/build.hpp"
 #include "tilejet/synth/lattice.hpp"
+#include "tilejet/synth/sampler.hpp"
 
 using namespace tilejet::synth;
 
@@ -130,4 +132,29 @@ TEST_CASE("white noise and marble are stochastic", "[lattice]") {
 
     REQUIRE(detect_lattice(cv::Mat(64, 64, CV_8UC3, cv::Scalar(9, 9, 9))).kind ==
             LatticeKind::Stochastic);
+}
+
+TEST_CASE("a lattice-aware map keeps the exemplar's lattice at four times its size",
+          "[lattice][build]") {
+    const Basis brick{{40, 0}, {20, 17}};
+    const cv::Mat exemplar = make_lattice_texture(brick, {233, 191}, 4);
+    BuildParams p;
+    p.patches = 80;
+    p.candidates = 1200;
+    const TextureMap map = build_texture_map(exemplar, p);
+    // Cells are a lattice-compatible rectangle: whole courses (34 px) and whole bricks (40 px).
+    INFO("cell " << map.cell_width << "x" << map.cell_height);
+    REQUIRE(map.cell_width % 40 == 0);
+    REQUIRE(map.cell_height % 34 == 0);
+    const cv::Mat out = render_region(map, 5, {-3000, 7000, 4 * 233, 4 * 191});
+    const Lattice found = detect_lattice(out);
+    INFO("rendered: v1 (" << found.v1.x << "," << found.v1.y << ") v2 (" << found.v2.x << ","
+                          << found.v2.y << ")");
+    REQUIRE(same_lattice(found, brick));
+
+    // Without the lattice the cell period takes over: the check above can fail.
+    p.lattice = BuildParams::Lattice::Off;
+    const Lattice off = detect_lattice(
+        render_region(build_texture_map(exemplar, p), 5, {-3000, 7000, 4 * 233, 4 * 191}));
+    REQUIRE_FALSE(same_lattice(off, brick));
 }

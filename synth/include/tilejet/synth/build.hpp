@@ -18,6 +18,9 @@ struct BuildParams {
     uint64_t seed = 1;
     int threads = 0;              // 0: all cores; the result never depends on it
     double active_per_cell = 10;  // expected active patches per cell (eta * |set|)
+    // Auto: detect the exemplar's lattice; when it has one, cells are a lattice-compatible
+    // rectangle and every copy (quilting blocks, patches) moves by lattice translations only.
+    enum class Lattice { Auto, Off } lattice = Lattice::Auto;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).
