@@ -12,5 +12,6 @@ void add_profile_commands(CLI::App& app);
 void add_analyze_commands(CLI::App& app);
 void add_line_commands(CLI::App& app);
 void add_sim_commands(CLI::App& app);
+void add_job_commands(CLI::App& app);
 
 }  // namespace tilejet::cli

@@ -1,0 +1,105 @@
+#include "tilejet/api/job_request.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace tilejet::api {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void bad(const std::string& field, const std::string& message) {
+    throw ApiError(400, field, field + ": " + message);
+}
+
+std::int64_t integer(const json& j, const std::string& field, std::int64_t min, std::int64_t max) {
+    if (!j.is_number_integer()) bad(field, "expected an integer");
+    if (j.is_number_unsigned() && j.get<std::uint64_t>() > std::uint64_t(max))
+        bad(field, "must be at most " + std::to_string(max));
+    const auto v = j.get<std::int64_t>();
+    if (v < min || v > max)
+        bad(field, "must be " + std::to_string(min) + ".." + std::to_string(max));
+    return v;
+}
+
+std::string path(const json& j, const std::string& field) {
+    if (!j.is_string()) bad(field, "expected a string (an absolute path)");
+    const auto s = j.get<std::string>();
+    // The daemon runs with its own working directory: a relative path would mean something
+    // else there than where the client stood.
+    if (s.empty() || s.front() != '/') bad(field, "must be an absolute path, got '" + s + "'");
+    if (s.size() > 4096) bad(field, "path too long");
+    return s;
+}
+
+double millimetres(std::string_view text, const std::string& field) {
+    double v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+        bad(field, "'" + std::string(text) + "' is not a number of millimetres");
+    if (v < 1 || v > 5000) bad(field, "tile sides must be 1..5000 mm");
+    return v;
+}
+
+}  // namespace
+
+std::pair<double, double> parse_tile_mm(std::string_view text, const std::string& field) {
+    const auto x = text.find('x');
+    if (x == std::string_view::npos) bad(field, "expected WxH in mm, e.g. 300x300");
+    return {millimetres(text.substr(0, x), field), millimetres(text.substr(x + 1), field)};
+}
+
+jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
+    if (body.size() > kMaxBodyBytes) throw ApiError(413, "body", "body: too large");
+    json j;
+    try {
+        j = json::parse(body);
+    } catch (const json::parse_error& e) {
+        bad("body", std::string("malformed JSON: ") + e.what());
+    }
+    if (!j.is_object()) bad("body", "expected a JSON object");
+    static const std::set<std::string> known{"map", "seed",    "tiles",  "tile_mm",
+                                             "dpi", "profile", "layout", "wall_width"};
+    for (const auto& [key, value] : j.items())
+        if (!known.contains(key)) bad(key, "unknown field");
+    for (const char* required : {"map", "seed", "tiles", "tile_mm"})
+        if (!j.contains(required)) bad(required, "missing (required)");
+
+    jobs::JobSpec spec;
+    spec.map = path(j["map"], "map");
+    if (!j["seed"].is_number_integer() ||
+        (!j["seed"].is_number_unsigned() && j["seed"].get<std::int64_t>() < 0))
+        bad("seed", "expected an integer 0..2^64-1");
+    spec.seed = j["seed"].get<std::uint64_t>();
+    spec.tiles = integer(j["tiles"], "tiles", 1, 10'000'000);
+    const json& mm = j["tile_mm"];
+    if (mm.is_string()) {
+        std::tie(spec.tile_width_mm, spec.tile_height_mm) =
+            parse_tile_mm(mm.get<std::string>(), "tile_mm");
+    } else if (mm.is_array() && mm.size() == 2 && mm[0].is_number() && mm[1].is_number()) {
+        spec.tile_width_mm = millimetres(std::to_string(mm[0].get<double>()), "tile_mm");
+        spec.tile_height_mm = millimetres(std::to_string(mm[1].get<double>()), "tile_mm");
+    } else {
+        bad("tile_mm", "expected \"WxH\" or [W, H] in mm");
+    }
+    spec.dpi = j.contains("dpi") ? int(integer(j["dpi"], "dpi", 10, 2400)) : default_dpi;
+    if (j.contains("profile")) spec.profile = path(j["profile"], "profile");
+    if (j.contains("layout")) {
+        if (!j["layout"].is_string()) bad("layout", "expected \"scatter\" or \"wall\"");
+        spec.layout = j["layout"].get<std::string>();
+        if (spec.layout != "scatter" && spec.layout != "wall")
+            bad("layout", "'" + spec.layout + "' is not scatter or wall");
+    }
+    if (j.contains("wall_width"))
+        spec.wall_width = int(integer(j["wall_width"], "wall_width", 1, 100000));
+    // One tile's separations must fit the heads' protocol and memory: 4 bytes per pixel.
+    const double px = spec.tile_width_mm / 25.4 * spec.dpi * spec.tile_height_mm / 25.4 * spec.dpi;
+    if (px * 4 > double(1u << 30))
+        bad("dpi", "a tile of this size and dpi exceeds 1 GiB of separations");
+    return spec;
+}
+
+}  // namespace tilejet::api

@@ -1,0 +1,125 @@
+#include "daemon_config.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "tilejet/drivers/config_parse.hpp"
+
+namespace tilejet::daemon {
+
+namespace {
+
+using drivers::ConfigSection;
+using drivers::ConfigSource;
+
+constexpr std::array<const char*, 5> kDaemonSections{"colour", "storage", "api", "render", "print"};
+
+const toml::table* section(const toml::table& root, const char* name, const ConfigSource& src) {
+    const toml::node* node = root.get(name);
+    if (!node) return nullptr;
+    if (!node->is_table())
+        throw std::runtime_error(src.file + ":" + std::to_string(node->source().begin.line) +
+                                 ": '" + name + "' must be a [" + name + "] section");
+    return node->as_table();
+}
+
+std::string resolve(const ConfigSource& src, const std::string& path) {
+    if (path.empty() || std::filesystem::path(path).is_absolute()) return path;
+    return (std::filesystem::path(src.file).parent_path() / path).lexically_normal().string();
+}
+
+colour::ColourSettings parse_colour(const toml::table* t, const ConfigSource& src) {
+    ConfigSection s(t, src, "colour");
+    colour::ColourSettings c;
+    c.output_profile = resolve(src, s.require_string("output_profile"));
+    c.source_profile = resolve(src, s.get_string("source_profile", ""));
+    const std::string intent =
+        s.get_choice("intent", "perceptual", {"perceptual", "relative", "saturation", "absolute"});
+    c.intent = *colour::parse_intent(intent);
+    c.black_point_compensation = s.get_bool("black_point_compensation", false);
+    c.ink_limit_percent = s.get_double("ink_limit_percent", 300, 0, 400);
+    c.ink_curves = resolve(src, s.get_string("ink_curves", ""));
+    if (!std::filesystem::exists(c.output_profile))
+        s.fail("output_profile", "no such file '" + c.output_profile.string() + "'");
+    s.finish();
+    return c;
+}
+
+StorageConfig parse_storage(const toml::table* t, const ConfigSource& src) {
+    ConfigSection s(t, src, "storage");
+    StorageConfig c;
+    c.database = resolve(src, s.get_string("database", c.database));
+    c.previews = resolve(src, s.get_string("previews", c.previews));
+    c.preview_tiles = int(s.get_int("preview_tiles", c.preview_tiles, 0, 1000));
+    s.finish();
+    return c;
+}
+
+ApiConfig parse_api(const toml::table* t, const ConfigSource& src) {
+    ConfigSection s(t, src, "api");
+    ApiConfig c;
+    c.host = s.get_string("host", c.host);
+    c.port = int(s.get_int("port", c.port, 0, 65535));
+    // The API has no sign-in yet (the panel issue adds it): it must not leave this machine.
+    if (!(c.host == "localhost" || c.host == "::1" || c.host.starts_with("127.")))
+        s.fail("host", "'" + c.host + "' is not a loopback address");
+    s.finish();
+    return c;
+}
+
+RenderConfig parse_render(const toml::table* t, const ConfigSource& src) {
+    ConfigSection s(t, src, "render");
+    RenderConfig c;
+    c.threads = int(s.get_int("threads", c.threads, 0, 256));
+    c.queue_tiles = int(s.get_int("queue_tiles", c.queue_tiles, 1, 256));
+    c.dpi = int(s.get_int("dpi", c.dpi, 10, 2400));
+    s.finish();
+    return c;
+}
+
+PrintConfig parse_print(const toml::table* t, const ConfigSource& src,
+                        const drivers::DriversConfig& d) {
+    ConfigSection s(t, src, "print");
+    PrintConfig c;
+    c.speed_mm_s = int(s.get_int("speed_mm_s", c.speed_mm_s, 1, 2000));
+    c.min_speed_mm_s = int(s.get_int("min_speed_mm_s", c.min_speed_mm_s, 1, 2000));
+    c.poll = std::chrono::milliseconds(s.get_int("poll_ms", 5, 1, 1000));
+    c.send_timeout = std::chrono::milliseconds(s.get_int("send_timeout_ms", 1000, 10, 60000));
+    c.send_margin = std::chrono::milliseconds(s.get_int("send_margin_ms", 20, 0, 10000));
+    c.drain_timeout = std::chrono::seconds(s.get_int("drain_timeout_s", 30, 0, 3600));
+    // The simulated heads' buffer is configured in [sim]; real heads would say it here.
+    c.head_buffer_tiles = int(
+        s.get_int("head_buffer_tiles", d.line.heads == "sim" ? d.sim.head_buffer_tiles : 2, 1, 64));
+    if (c.min_speed_mm_s > c.speed_mm_s) s.fail("min_speed_mm_s", "must be at most speed_mm_s");
+    s.finish();
+    return c;
+}
+
+}  // namespace
+
+DaemonConfig load_daemon_config(const std::string& path) {
+    const toml::table root = drivers::load_toml_file(path);
+    const ConfigSource src{path};
+    for (const auto& [key, node] : root) {
+        const auto known = [&](const auto& list) {
+            return std::find(list.begin(), list.end(), key.str()) != list.end();
+        };
+        if (!known(drivers::kDriverSections) && !known(kDaemonSections))
+            throw std::runtime_error(path + ":" + std::to_string(node.source().begin.line) + ": [" +
+                                     std::string(key.str()) + "]: unknown section");
+    }
+    drivers::DriversConfig d = drivers::parse_drivers_config(root, src);
+    PrintConfig print = parse_print(section(root, "print", src), src, d);
+    return DaemonConfig{
+        .file = path,
+        .drivers = std::move(d),
+        .colour = parse_colour(section(root, "colour", src), src),
+        .storage = parse_storage(section(root, "storage", src), src),
+        .api = parse_api(section(root, "api", src), src),
+        .render = parse_render(section(root, "render", src), src),
+        .print = print,
+    };
+}
+
+}  // namespace tilejet::daemon

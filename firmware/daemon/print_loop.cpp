@@ -1,0 +1,618 @@
+#include "print_loop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "tilejet/drivers/factory.hpp"
+
+namespace tilejet::daemon {
+
+using namespace std::chrono_literals;
+using drivers::GpioInput;
+using drivers::GpioOutput;
+using drivers::LinkError;
+
+namespace {
+
+std::string ms_text(std::chrono::steady_clock::duration d) {
+    return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count()) + " ms";
+}
+
+}  // namespace
+
+PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
+    : config_(config),
+      print_(config.print),
+      controller_(controller),
+      gpio_(drivers::make_gpio(config.drivers)),
+      heads_(drivers::make_head_sink(config.drivers)),
+      store_(config.storage.database),
+      render_(config.render.threads, config.render.queue_tiles) {
+    speed_ = print_.speed_mm_s;
+    seq_ = store_.last_seq();
+    // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
+    // before the first send.
+    mirror_certain_ = false;
+    gpio_->set(GpioOutput::print_enable, false);
+}
+
+PrintLoop::~PrintLoop() = default;
+
+void PrintLoop::reload(const PrintConfig& print) {
+    std::lock_guard lock(reload_mutex_);
+    reload_ = print;
+}
+
+void PrintLoop::run() {
+    // libmodbus contexts belong to one thread: the loop's own.
+    line_ = drivers::make_line_control(config_.drivers);
+    std::string last_error;
+    while (!done_) {
+        try {
+            turn();
+        } catch (const LinkError& e) {
+            on_link_lost(e.what());
+        } catch (const std::exception& e) {
+            // Nothing here may end the loop: the line must stay controlled. Log, wait, retry.
+            if (e.what() != last_error) log_line("error: " + std::string(e.what()));
+            last_error = e.what();
+            try {
+                gpio_->set(GpioOutput::print_enable, false);
+            } catch (const std::exception&) {
+                // The GPIO chip is gone too; its own side drops print-enable (PROTOCOLS.md).
+            }
+            mirror_certain_ = false;
+            state_.set(LineStatus::faulted, e.what());
+            publish();
+            std::this_thread::sleep_for(100ms);
+        }
+        controller_.heartbeat_ns =
+            std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+                .count();
+    }
+    try {
+        gpio_->set(GpioOutput::print_enable, false);
+        line_->stop();
+    } catch (const std::exception& e) {
+        log_line("could not park the line on the way out: " + std::string(e.what()));
+    }
+    line_.reset();  // on the thread that made it
+    state_.set(LineStatus::idle, "stopped (SIGTERM)");
+    publish();
+}
+
+void PrintLoop::turn() {
+    {
+        std::lock_guard lock(reload_mutex_);
+        if (reload_) {
+            print_ = *std::exchange(reload_, std::nullopt);
+            speed_ = std::min(speed_, print_.speed_mm_s);
+            log_line("reloaded [print]: speed " + std::to_string(print_.speed_mm_s) + " mm/s");
+        }
+    }
+    handle_commands();
+    handle_gpio_events(print_.poll);
+    if (!poll_line()) {
+        publish();
+        return;
+    }
+    if (controller_.terminate && !draining_) {
+        draining_ = true;
+        drain_deadline_ = Clock::now() + print_.drain_timeout;
+        log_line("SIGTERM: finishing the tiles in the heads, then stopping");
+    }
+    if (gpio_->estop_latched() || line_state_.estop) {
+        if (line_state_.running) line_->stop();
+        state_.set(LineStatus::estop, gpio_->estop_latched() ? "e-stop: release it and acknowledge"
+                                                             : "e-stop chain open (PLC)");
+        if (draining_) done_ = true;
+    } else if (line_state_.fault_code != 0) {
+        gpio_->set(GpioOutput::print_enable, false);
+        state_.set(LineStatus::faulted, "PLC fault " + std::to_string(line_state_.fault_code));
+        if (draining_) done_ = true;
+    } else {
+        select_job();
+        print_turn();
+    }
+    publish();
+}
+
+void PrintLoop::handle_commands() {
+    for (Command c : controller_.take_commands()) {
+        switch (c) {
+            case Command::pause:
+                want_print_ = false;
+                log_line("operator: pause");
+                break;
+            case Command::resume:
+                want_print_ = true;
+                log_line("operator: resume");
+                break;
+            case Command::stop_job:
+                if (job_) {
+                    stop_job_ = true;
+                    log_line("operator: stop job " + job_->name());
+                }
+                break;
+            case Command::acknowledge:
+                try {
+                    gpio_->acknowledge_estop();
+                    log_line("operator: e-stop acknowledged");
+                } catch (const drivers::EstopLatched& e) {
+                    log_line("operator: e-stop acknowledge refused: " + std::string(e.what()));
+                }
+                break;
+        }
+    }
+}
+
+void PrintLoop::handle_gpio_events(std::chrono::milliseconds wait) {
+    auto event = gpio_->wait_event(wait);
+    while (event) {
+        if (event->input == GpioInput::estop && event->level) on_estop(event->timestamp);
+        event = gpio_->wait_event(0ms);
+    }
+}
+
+bool PrintLoop::poll_line() {
+    const Clock::time_point start = Clock::now();
+    try {
+        line_state_ = line_->read_state();
+    } catch (const LinkError& e) {
+        on_link_lost(e.what());
+        return false;
+    } catch (const drivers::RegisterError& e) {
+        on_link_lost(e.what());
+        return false;
+    }
+    if (!link_up_) {
+        link_up_ = true;
+        log_line("PLC link up (tile counter " + std::to_string(line_state_.tile_counter) + ")");
+    }
+    if (!counter_known_) {
+        counter_known_ = true;
+        counter_ = line_state_.tile_counter;
+        earliest_next_ = start;
+    } else if (line_state_.tile_counter != counter_) {
+        const std::uint32_t arrived = line_state_.tile_counter - counter_;  // wraps at 2^32
+        const bool enabled = gpio_->output(GpioOutput::print_enable);
+        if (enabled != enabled_at_poll_) {
+            // Print-enable changed since the last poll (e-stop latch): whether these tiles
+            // got ink is unknown.
+            mirror_certain_ = false;
+            log_line("tiles reached the heads while print-enable changed: resync");
+        } else {
+            on_arrivals(arrived, enabled, prev_poll_start_);
+        }
+        // The last of them came after the previous poll began; the next one is a pitch later.
+        earliest_next_ = prev_poll_start_ + arrived * pitch_time();
+    }
+    prev_poll_start_ = start;
+    enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
+    if (!line_state_.running) run_commanded_ = false;
+    return true;
+}
+
+void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+        const std::int64_t line_tile = std::int64_t(counter_) + i;
+        if (print_enable && !mirror_.empty()) {
+            const HeadEntry e = mirror_.front();
+            mirror_.pop_front();
+            ++line_printed_;
+            if (!e.known || e.index < 0) {
+                ++blanks_;
+                if (e.known) store_.mark_printed(e.job, e.index, line_tile);
+            } else {
+                store_.mark_printed(e.job, e.index, line_tile);
+                last_printed_ = Printed{e, lower_bound + i * pitch_time()};
+            }
+        } else {
+            ++line_missed_;
+            if (job_) store_.add_missed_line_tiles(job_->id, 1);
+            // A tile passed with nothing to print while the job still has tiles: rendering
+            // did not keep up.
+            if (print_enable && job_ && !draining_ && !stop_job_ &&
+                !store_.upcoming(*job_, 1).empty()) {
+                render_reason_ = "render behind: line tile " + std::to_string(line_tile) +
+                                 " passed with no separations ready";
+                adjust_speed();
+            }
+        }
+    }
+    counter_ += count;
+}
+
+void PrintLoop::set_print_enable(bool on) {
+    gpio_->set(GpioOutput::print_enable, on);
+    enabled_at_poll_ = on;
+}
+
+void PrintLoop::on_estop(std::chrono::nanoseconds at) {
+    // LatchedGpio has already dropped print-enable. Tiles that reached the heads before the
+    // e-stop were printed; catch up on them before judging which one was under the heads.
+    try {
+        const auto st = line_->read_state();
+        if (counter_known_ && st.tile_counter != counter_) {
+            on_arrivals(st.tile_counter - counter_, state_.status() == LineStatus::printing,
+                        prev_poll_start_);
+        }
+        counter_ = st.tile_counter;
+        line_state_ = st;
+        line_->stop();
+        enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
+    } catch (const std::exception& e) {
+        mirror_certain_ = false;
+        counter_known_ = false;
+        log_line("e-stop: PLC not reachable (" + std::string(e.what()) + "); resync after it");
+    }
+    const Clock::time_point estop_at{std::chrono::duration_cast<Clock::duration>(at)};
+    if (last_printed_ && state_.status() == LineStatus::printing) {
+        // A tile is under the heads from its leading edge until its trailing edge has passed:
+        // tile_length / speed. Printing it may have stopped half way: spoiled.
+        const double speed = std::max(
+            1.0,
+            std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
+        const auto under = std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
+        if (estop_at - last_printed_->arrived_after < under) {
+            const HeadEntry& e = last_printed_->entry;
+            store_.mark_spoiled(e.job, e.index);
+            ++spoiled_;
+            log_line("e-stop: tile " + std::to_string(e.index) + " of job-" +
+                     std::to_string(e.job) +
+                     " was under the heads: spoiled, it will be printed "
+                     "again");
+        }
+    }
+    last_printed_.reset();
+    state_.set(LineStatus::estop, "e-stop: print-enable dropped, conveyor stopped");
+}
+
+void PrintLoop::on_link_lost(const std::string& why) {
+    gpio_->set(GpioOutput::print_enable, false);
+    if (link_up_ || state_.status() != LineStatus::faulted) {
+        // Tiles may reach the heads unseen from now on: with print-enable low they pass
+        // unprinted and the heads keep their buffer, but the last moments before are unknown.
+        mirror_certain_ = false;
+        counter_known_ = false;
+        link_up_ = false;
+        run_commanded_ = false;
+        state_.set(LineStatus::faulted, "PLC link down: " + why);
+    }
+    if (draining_) done_ = true;
+}
+
+void PrintLoop::select_job() {
+    if (job_) {
+        // The API may have cancelled it; re-read now and then.
+        return;
+    }
+    if (Clock::now() < next_job_check_) return;
+    next_job_check_ = Clock::now() + 100ms;
+    auto job = store_.active_job();
+    if (!job) return;
+    try {
+        renderer_ = std::make_shared<TileRenderer>(*job, config_.colour, config_.storage.previews,
+                                                   config_.storage.preview_tiles);
+    } catch (const std::exception& e) {
+        store_.set_status(job->id, jobs::JobStatus::failed, e.what());
+        log_line(job->name() + " failed: " + e.what());
+        return;
+    }
+    store_.set_status(job->id, jobs::JobStatus::printing);
+    job_ = store_.job(job->id);
+    stop_job_ = false;
+    log_line("job " + job_->name() + ": " + std::to_string(job_->spec.tiles) + " tiles of " +
+             std::to_string(renderer_->geometry().width) + "x" +
+             std::to_string(renderer_->geometry().height) + " px, " +
+             std::to_string(job_->printed) + " already printed");
+}
+
+bool PrintLoop::conveyor_stopped() const {
+    return link_up_ && !line_state_.running && line_state_.speed_mm_s == 0 && !run_commanded_;
+}
+
+void PrintLoop::park(const std::string& reason, LineStatus status) {
+    if (line_state_.running || run_commanded_) {
+        line_->stop();
+        run_commanded_ = false;
+        // Tiles that reached the heads before the stop were printed with print-enable still
+        // on: count them before it drops.
+        poll_line();
+    }
+    set_print_enable(false);
+    state_.set(status, reason);
+}
+
+void PrintLoop::print_turn() {
+    if (job_) render_.want(renderer_, store_.upcoming(*job_, render_.capacity()));
+    if (auto error = render_.take_error(); error && job_) {
+        store_.set_status(job_->id, jobs::JobStatus::failed, "render: " + *error);
+        log_line(job_->name() + " failed: render: " + *error);
+        job_.reset();
+    }
+    check_job_done();
+    if (draining_) {
+        const bool holds_job_tiles = std::any_of(mirror_.begin(), mirror_.end(),
+                                                 [](auto& e) { return e.known && e.index >= 0; });
+        if (!holds_job_tiles || !want_print_ || Clock::now() > drain_deadline_ ||
+            !line_state_.running) {
+            if (holds_job_tiles)
+                log_line("SIGTERM: stopping with " + std::to_string(mirror_.size()) +
+                         " tiles in the heads (printed after the next start)");
+            done_ = true;
+        }
+        return;
+    }
+    if (!job_) {
+        const bool blanks_only = std::all_of(mirror_.begin(), mirror_.end(),
+                                             [](auto& e) { return !e.known || e.index < 0; });
+        if (line_state_.running && blanks_only)
+            park("no job", LineStatus::idle);
+        else if (!line_state_.running)
+            state_.set(LineStatus::idle, "no job");
+        return;
+    }
+    if (!want_print_) {
+        park("paused by the operator", LineStatus::paused);
+        return;
+    }
+    if (!mirror_certain_) {
+        park("finding out what the heads hold", LineStatus::ready);
+        if (conveyor_stopped() && !resync()) return;
+        if (!mirror_certain_) return;
+    }
+    if (render_wait_ && !conveyor_stopped()) {
+        park(render_reason_, LineStatus::paused);
+        return;
+    }
+    if (conveyor_stopped()) {
+        // Nothing can reach the heads: fill them, then start.
+        if (render_wait_) {
+            const int need = std::max(1, render_.capacity() / 2);
+            if (render_.ready() < need) {
+                state_.set(LineStatus::paused, render_reason_ + "; conveyor stopped until " +
+                                                   std::to_string(need) + " tiles are rendered");
+                return;
+            }
+            render_wait_ = false;
+        }
+        while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ && send_next(false)) {
+        }
+        if (!mirror_.empty())
+            start_conveyor();
+        else
+            state_.set(LineStatus::ready, "waiting for the first tiles to render");
+        return;
+    }
+    // Running: send only into the quiet time before the next tile can arrive.
+    while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ &&
+           Clock::now() < deadline(mirror_.size()) && send_next(true)) {
+    }
+    if (!mirror_certain_) return;
+    if (render_.ready() >= render_.capacity() && speed_ < print_.speed_mm_s &&
+        Clock::now() - last_speed_change_ > 2s) {
+        speed_ = std::min(print_.speed_mm_s, speed_ + std::max(1, speed_ / 4));
+        line_->set_speed(std::uint16_t(speed_));
+        last_speed_change_ = Clock::now();
+        log_line("render-ahead full: conveyor back up to " + std::to_string(speed_) + " mm/s");
+        if (speed_ == print_.speed_mm_s) render_reason_.clear();
+    }
+    state_.set(LineStatus::printing, render_reason_.empty()
+                                         ? job_->name()
+                                         : job_->name() + ", slowed to " + std::to_string(speed_) +
+                                               " mm/s: " + render_reason_);
+}
+
+void PrintLoop::adjust_speed() {
+    if (speed_ > print_.min_speed_mm_s) {
+        speed_ = std::max(print_.min_speed_mm_s, speed_ * 7 / 10);
+        try {
+            line_->set_speed(std::uint16_t(speed_));
+        } catch (const std::exception& e) {
+            log_line("could not slow the conveyor: " + std::string(e.what()));
+        }
+        last_speed_change_ = Clock::now();
+        log_line(render_reason_ + ": conveyor slowed to " + std::to_string(speed_) + " mm/s");
+    } else if (!render_wait_) {
+        render_wait_ = true;  // print_turn stops the conveyor
+        log_line(render_reason_ + ": at the slowest speed; stopping the conveyor");
+    }
+}
+
+void PrintLoop::start_conveyor() {
+    try {
+        set_print_enable(true);
+    } catch (const drivers::EstopLatched& e) {
+        state_.set(LineStatus::estop, e.what());
+        return;
+    }
+    line_->set_speed(std::uint16_t(speed_));
+    line_->run();
+    run_commanded_ = true;
+    // Where the belt stands is unknown: a tile may reach the heads right away.
+    earliest_next_ = Clock::now();
+    state_.set(LineStatus::printing, job_->name());
+}
+
+PrintLoop::Clock::duration PrintLoop::pitch_time() const {
+    // At the fastest speed the line may run, so that it is never longer than the real one.
+    const double fastest = std::max<double>(
+        {double(print_.speed_mm_s), double(speed_), double(line_state_.speed_mm_s), 1.0});
+    return std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(config_.drivers.line.tile_pitch_mm / fastest));
+}
+
+PrintLoop::Clock::time_point PrintLoop::deadline(size_t queued) const {
+    return earliest_next_ + std::int64_t(queued) * pitch_time() - print_.send_margin;
+}
+
+std::optional<Separations> PrintLoop::tile_for(std::int64_t index, bool wait) {
+    auto tile = render_.take(job_->id, index);
+    if (!tile && wait) tile = renderer_->render(index, config_.render.threads);
+    return tile;
+}
+
+bool PrintLoop::send_next(bool deadline_applies) {
+    const auto next = store_.upcoming(*job_, 1);
+    if (next.empty()) return false;
+    auto tile = tile_for(next.front(), false);
+    if (!tile) return false;
+    const HeadEntry entry{job_->id, next.front(), true};
+    const auto result = send(entry, *tile, deadline_applies);
+    return result == SendResult::sent;
+}
+
+PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations& tile,
+                                      bool deadline_applies) {
+    const std::int64_t seq = ++seq_;
+    store_.mark_sending(entry.job, entry.index, seq);
+    try {
+        heads_->send({"job-" + std::to_string(entry.job),
+                      std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
+                     print_.send_timeout);
+    } catch (const drivers::HeadsBusy&) {
+        store_.unmark_sending(entry.job, entry.index);
+        return SendResult::busy;
+    } catch (const std::exception& e) {
+        // The heads did not take it (connection refused, timeout): sent again later.
+        store_.unmark_sending(entry.job, entry.index);
+        log_line("heads: " + std::string(e.what()));
+        return SendResult::failed;
+    }
+    store_.mark_sent(entry.job, entry.index);
+    mirror_.push_back(entry);
+    if (deadline_applies && Clock::now() > deadline(mirror_.size() - 1)) {
+        log_line("tile " + std::to_string(entry.index) + " reached the heads " +
+                 ms_text(Clock::now() - deadline(mirror_.size() - 1)) +
+                 " too close to a tile's arrival: resync");
+        mirror_certain_ = false;
+    }
+    return SendResult::sent;
+}
+
+bool PrintLoop::resync() {
+    const std::vector<jobs::QueuedTile> old = store_.heads_queue();
+    if (old.empty()) {
+        mirror_.clear();
+        mirror_certain_ = true;
+        return true;
+    }
+    const int capacity = print_.head_buffer_tiles;
+    std::vector<HeadEntry> probes;
+    bool full = false;
+    const std::size_t tile_bytes =
+        std::size_t(renderer_->geometry().width) * std::size_t(renderer_->geometry().height) * 4;
+    while (int(probes.size()) < capacity) {
+        const auto next = stop_job_ ? std::vector<std::int64_t>{} : store_.upcoming(*job_, 1);
+        std::optional<Separations> tile;
+        HeadEntry entry{job_->id, 0, true};
+        if (!next.empty()) {
+            entry.index = next.front();
+            tile = tile_for(entry.index, true);
+        } else {
+            // Out of tiles to probe with: a blank tile (no ink) makes the heads answer too.
+            entry.index = -(seq_ + 1);
+            tile = Separations{job_->id, entry.index, 0, 0, std::vector<std::uint8_t>(tile_bytes)};
+        }
+        const auto result = send(entry, *tile, false);
+        if (result == SendResult::busy) {
+            full = true;
+            break;
+        }
+        if (result == SendResult::failed) {
+            // Put back what the probe sent; the next turn starts over.
+            for (const HeadEntry& p : probes)
+                if (p.index >= 0) store_.unmark_sending(p.job, p.index);
+            mirror_.clear();
+            return false;
+        }
+        probes.push_back(entry);
+    }
+    // `held` of the old tiles are still in the heads: the newest ones.
+    int held = full ? capacity - int(probes.size()) : 0;
+    std::vector<jobs::QueuedTile> olds = old;
+    if (olds.back().state == jobs::TileState::sending) {
+        // The daemon stopped between marking it and hearing back: whether it got there shows
+        // in the count (no tile can have reached the heads during a send, rule 2).
+        if (held == int(olds.size()) - 1) {
+            store_.unmark_sending(olds.back().job, olds.back().index);
+            olds.pop_back();
+        } else {
+            store_.mark_sent(olds.back().job, olds.back().index);
+        }
+    }
+    const int unknown = std::max(0, held - int(olds.size()));
+    if (unknown > 0)
+        log_line("resync: the heads hold " + std::to_string(unknown) +
+                 " tile(s) the job store never sent; they will pass as blanks");
+    const int printed = int(olds.size()) - std::min<int>(held, int(olds.size()));
+    for (int i = 0; i < printed; ++i)
+        store_.mark_printed(olds[size_t(i)].job, olds[size_t(i)].index, -1);
+    std::deque<HeadEntry> mirror;
+    for (int i = 0; i < unknown; ++i)
+        mirror.push_back({0, -1, false});
+    for (size_t i = size_t(printed); i < olds.size(); ++i)
+        mirror.push_back({olds[i].job, olds[i].index, true});
+    for (const HeadEntry& p : probes)
+        mirror.push_back(p);
+    mirror_ = std::move(mirror);
+    mirror_certain_ = true;
+    log_line("resync: heads hold " + std::to_string(held) + " earlier tile(s); " +
+             std::to_string(printed) + " sent before were printed; " +
+             std::to_string(probes.size()) + " sent now");
+    return true;
+}
+
+void PrintLoop::check_job_done() {
+    if (!job_) return;
+    const auto job = store_.job(job_->id);
+    if (!job) return;
+    const bool holds = std::any_of(mirror_.begin(), mirror_.end(), [&](const HeadEntry& e) {
+        return e.known && e.job == job_->id && e.index >= 0;
+    });
+    const bool cancelled = job->status == jobs::JobStatus::cancelled;
+    if ((stop_job_ || cancelled) && !holds) {
+        store_.set_status(job->id, jobs::JobStatus::cancelled, "stopped by the operator");
+        log_line(job->name() + " stopped: " + std::to_string(job->printed) + " of " +
+                 std::to_string(job->spec.tiles) + " tiles printed");
+        job_.reset();
+        renderer_.reset();
+        render_.want(nullptr, {});
+        return;
+    }
+    if (cancelled) stop_job_ = true;
+    job_ = job;
+    if (job->printed >= job->spec.tiles) {
+        store_.set_status(job->id, jobs::JobStatus::done);
+        log_line(job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
+                 std::to_string(job->spoiled) + " spoiled and reprinted, " +
+                 std::to_string(job->missed_line_tiles) + " line tiles passed unprinted");
+        job_.reset();
+        renderer_.reset();
+        render_.want(nullptr, {});
+    }
+}
+
+void PrintLoop::publish() {
+    LineSnapshot s;
+    s.status = state_.status();
+    s.reason = state_.reason();
+    if (job_) s.job = job_->id;
+    s.link_up = link_up_;
+    s.estop_latched = gpio_->estop_latched();
+    s.conveyor_running = line_state_.running;
+    s.speed_setpoint_mm_s = line_state_.speed_setpoint_mm_s;
+    s.tile_counter = line_state_.tile_counter;
+    s.heads_queue = int(mirror_.size());
+    s.rendered_ahead = render_.ready();
+    s.line_tiles_printed = line_printed_;
+    s.line_tiles_missed = line_missed_;
+    s.blanks = blanks_;
+    s.spoiled = spoiled_;
+    controller_.publish(s);
+}
+
+}  // namespace tilejet::daemon

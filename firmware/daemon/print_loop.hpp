@@ -1,0 +1,119 @@
+#pragma once
+
+// PrintLoop: the one thread that drives the line. It keeps a mirror of what the heads hold
+// (the tiles it sent, in order), pops the front each time the PLC's tile counter says a tile
+// reached the heads with print-enable on, and writes every step to the job store first.
+//
+// Exactly once rests on three rules:
+//  1. A tile is marked `sending` in the store before its bytes go out, `sent` after.
+//  2. While the conveyor runs, bytes go out only in the quiet time after a tile has passed the
+//     heads, and must be in before the next tile can arrive (the earliest arrival follows from
+//     the tile pitch at the fastest speed). A send that ends late makes the mirror uncertain.
+//  3. Whenever the mirror is uncertain (start-up after a crash, PLC link loss, a late send),
+//     the loop stops the conveyor, holds print-enable low (the heads keep their buffer) and
+//     RESYNCs: it sends the next tiles until the heads answer FULL, which tells how many old
+//     tiles they still hold. The heads' buffer is a FIFO, so those are the newest of the tiles
+//     the store says were sent; the older ones were printed.
+#include <chrono>
+#include <deque>
+#include <memory>
+#include <optional>
+
+#include "controller.hpp"
+#include "daemon_config.hpp"
+#include "line_state.hpp"
+#include "render_ahead.hpp"
+#include "tilejet/drivers/gpio.hpp"
+#include "tilejet/drivers/head_sink.hpp"
+#include "tilejet/drivers/line_control.hpp"
+#include "tilejet/jobs/job_store.hpp"
+
+namespace tilejet::daemon {
+
+class PrintLoop {
+  public:
+    PrintLoop(const DaemonConfig& config, Controller& controller);
+    ~PrintLoop();
+    // Runs until controller.terminate is set and the heads are drained (or drain_timeout).
+    void run();
+    // SIGHUP: the [print] speeds and timing (takes effect at the next turn).
+    void reload(const PrintConfig& print);
+
+  private:
+    using Clock = std::chrono::steady_clock;
+    struct HeadEntry {
+        std::int64_t job = 0;
+        std::int64_t index = 0;  // < 0: a blank sent to probe the heads; > unknown: -1
+        bool known = true;       // false: something the heads held that the store never saw
+    };
+
+    void turn();
+    void handle_commands();
+    void handle_gpio_events(std::chrono::milliseconds wait);
+    bool poll_line();
+    void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
+    void on_estop(std::chrono::nanoseconds at);
+    void on_link_lost(const std::string& why);
+    void select_job();
+    void print_turn();
+    void park(const std::string& reason, LineStatus status);
+    bool conveyor_stopped() const;
+    bool resync();
+    bool send_next(bool deadline_applies);
+    enum class SendResult { sent, busy, failed };
+    SendResult send(const HeadEntry& entry, const Separations& tile, bool deadline_applies);
+    std::optional<Separations> tile_for(std::int64_t index, bool wait);
+    void start_conveyor();
+    void check_job_done();
+    void adjust_speed();
+    Clock::duration pitch_time() const;
+    Clock::time_point deadline(size_t queued) const;
+    void publish();
+    void set_print_enable(bool on);
+
+    DaemonConfig config_;
+    PrintConfig print_;
+    std::optional<PrintConfig> reload_;
+    std::mutex reload_mutex_;
+    Controller& controller_;
+    std::unique_ptr<drivers::LineControl> line_;
+    std::unique_ptr<drivers::Gpio> gpio_;
+    std::unique_ptr<drivers::HeadSink> heads_;
+    jobs::JobStore store_;
+    RenderAhead render_;
+    LineStateMachine state_;
+
+    std::optional<jobs::Job> job_;
+    std::shared_ptr<const TileRenderer> renderer_;
+    std::deque<HeadEntry> mirror_;
+    bool mirror_certain_ = false;
+    std::int64_t seq_ = 0;
+
+    bool want_print_ = true;  // the operator's resume/pause
+    bool stop_job_ = false;   // the operator's stop: cancel the job once its tiles are out
+    bool link_up_ = false;
+    drivers::LineState line_state_;
+    bool counter_known_ = false;
+    bool enabled_at_poll_ = false;  // print-enable when the last poll read the counter
+    std::uint32_t counter_ = 0;
+    Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
+    Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
+    bool run_commanded_ = false;
+    int speed_ = 0;             // the speed the daemon asks for while printing
+    bool render_wait_ = false;  // conveyor stopped until render-ahead catches up
+    std::string render_reason_;
+    Clock::time_point last_speed_change_{};
+
+    struct Printed {
+        HeadEntry entry;
+        Clock::time_point arrived_after;
+    };
+    std::optional<Printed> last_printed_;
+    std::int64_t line_printed_ = 0, line_missed_ = 0, blanks_ = 0, spoiled_ = 0;
+    bool draining_ = false;
+    Clock::time_point drain_deadline_{};
+    bool done_ = false;
+    Clock::time_point next_job_check_{};
+};
+
+}  // namespace tilejet::daemon

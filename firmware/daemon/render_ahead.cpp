@@ -1,0 +1,114 @@
+#include "render_ahead.hpp"
+
+#include <algorithm>
+
+namespace tilejet::daemon {
+
+RenderAhead::RenderAhead(int threads, int capacity) : capacity_(std::max(1, capacity)) {
+    if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    for (int i = 0; i < threads; ++i)
+        workers_.emplace_back([this] { work(); });
+}
+
+RenderAhead::~RenderAhead() {
+    {
+        std::lock_guard lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+}
+
+void RenderAhead::want(std::shared_ptr<const TileRenderer> renderer,
+                       const std::vector<std::int64_t>& next) {
+    std::lock_guard lock(mutex_);
+    renderer_ = std::move(renderer);
+    wanted_.clear();
+    const std::int64_t job = renderer_ ? renderer_->job() : -1;
+    for (std::int64_t index : next) {
+        if (int(wanted_.size()) >= capacity_) break;
+        wanted_.push_back({job, index});
+    }
+    for (auto it = slots_.begin(); it != slots_.end();) {
+        const bool keep = std::find(wanted_.begin(), wanted_.end(), it->first) != wanted_.end();
+        if (!keep && !it->second.working)
+            it = slots_.erase(it);
+        else
+            ++it;
+    }
+    for (const Key& k : wanted_)
+        slots_.try_emplace(k);
+    wake_.notify_all();
+}
+
+std::optional<Separations> RenderAhead::take(std::int64_t job, std::int64_t index) {
+    std::lock_guard lock(mutex_);
+    auto it = slots_.find({job, index});
+    if (it == slots_.end() || !it->second.tile) return std::nullopt;
+    std::optional<Separations> tile = std::move(it->second.tile);
+    slots_.erase(it);
+    std::erase(wanted_, Key{job, index});
+    return tile;
+}
+
+int RenderAhead::ready() const {
+    std::lock_guard lock(mutex_);
+    int n = 0;
+    for (const Key& k : wanted_) {
+        auto it = slots_.find(k);
+        if (it != slots_.end() && it->second.tile) ++n;
+    }
+    return n;
+}
+
+std::optional<std::string> RenderAhead::take_error() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(error_, std::nullopt);
+}
+
+void RenderAhead::work() {
+    std::unique_lock lock(mutex_);
+    while (true) {
+        Key key{};
+        bool found = false;
+        wake_.wait(lock, [&] {
+            if (stop_) return true;
+            for (const Key& k : wanted_) {
+                auto it = slots_.find(k);
+                if (it != slots_.end() && !it->second.working && !it->second.tile) {
+                    key = k;
+                    found = true;
+                    return true;
+                }
+            }
+            return false;
+        });
+        if (stop_) return;
+        if (!found) continue;
+        slots_[key].working = true;
+        const auto renderer = renderer_;
+        lock.unlock();
+        std::optional<Separations> tile;
+        std::string error;
+        try {
+            tile = renderer->render(key.second, 1);
+        } catch (const std::exception& e) {
+            error = "tile " + std::to_string(key.second) + ": " + e.what();
+        }
+        lock.lock();
+        auto it = slots_.find(key);
+        if (!error.empty()) {
+            error_ = error;
+            if (it != slots_.end()) it->second.working = false;
+            continue;
+        }
+        const bool wanted = std::find(wanted_.begin(), wanted_.end(), key) != wanted_.end();
+        if (it != slots_.end() && wanted) {
+            it->second.working = false;
+            it->second.tile = std::move(tile);
+        } else if (it != slots_.end()) {
+            slots_.erase(it);
+        }
+    }
+}
+
+}  // namespace tilejet::daemon

@@ -1,0 +1,58 @@
+#pragma once
+
+// RenderAhead: the next tiles' separations rendered on a pool of threads before the heads need
+// them. The queue is bounded: at most `capacity` tiles are rendered or in work, so memory stays
+// fixed however long the job; the print loop says which tiles it wants next, in order.
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "separations.hpp"
+#include "tile_renderer.hpp"
+
+namespace tilejet::daemon {
+
+class RenderAhead {
+  public:
+    RenderAhead(int threads, int capacity);
+    ~RenderAhead();
+    RenderAhead(const RenderAhead&) = delete;
+    RenderAhead& operator=(const RenderAhead&) = delete;
+
+    // The tiles to have ready, next first (only the first `capacity` count). Tiles no longer
+    // wanted are dropped.
+    void want(std::shared_ptr<const TileRenderer> renderer, const std::vector<std::int64_t>& next);
+    // The rendered tile, removed from the queue; nothing when it is not ready yet.
+    std::optional<Separations> take(std::int64_t job, std::int64_t index);
+    // How many of the wanted tiles are ready.
+    int ready() const;
+    int capacity() const { return capacity_; }
+    // The last render failure, cleared by reading it.
+    std::optional<std::string> take_error();
+
+  private:
+    using Key = std::pair<std::int64_t, std::int64_t>;  // job, tile index
+    struct Slot {
+        bool working = false;
+        std::optional<Separations> tile;
+    };
+    void work();
+
+    int capacity_;
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    bool stop_ = false;
+    std::shared_ptr<const TileRenderer> renderer_;
+    std::vector<Key> wanted_;
+    std::map<Key, Slot> slots_;
+    std::optional<std::string> error_;
+    std::vector<std::jthread> workers_;
+};
+
+}  // namespace tilejet::daemon

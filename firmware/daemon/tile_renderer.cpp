@@ -1,0 +1,63 @@
+#include "tile_renderer.hpp"
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tilejet/colour/cmyk_map.hpp"
+#include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+namespace tilejet::daemon {
+
+int tile_pixels(double mm, int dpi) {
+    return int(std::lround(mm / 25.4 * dpi));
+}
+
+colour::ColourSettings job_colour(const jobs::JobSpec& spec, colour::ColourSettings base) {
+    if (!spec.profile.empty()) base.output_profile = spec.profile;
+    return base;
+}
+
+TileRenderer::TileRenderer(const jobs::Job& job, const colour::ColourSettings& colour,
+                           std::filesystem::path previews, int preview_tiles)
+    : job_(job.id),
+      previews_(std::move(previews)),
+      preview_tiles_(preview_tiles),
+      seed_(job.spec.seed) {
+    const auto layout = synth::parse_tile_layout(job.spec.layout);
+    geometry_ = {tile_pixels(job.spec.tile_width_mm, job.spec.dpi),
+                 tile_pixels(job.spec.tile_height_mm, job.spec.dpi),
+                 layout.value_or(synth::TileLayout::Scatter), job.spec.wall_width};
+    const synth::TextureMap map = synth::load_texture_map(job.spec.map);
+    transform_ = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
+    // Convert once, copy many (design.md section 4): every tile of the job only copies bytes.
+    cmyk_map_ = colour::convert_map(map, *transform_);
+}
+
+Separations TileRenderer::render(std::int64_t index, int threads) const {
+    const synth::Region region = synth::tile_region(seed_, std::uint64_t(index), geometry_);
+    Separations s{job_, index, region.width, region.height, {}};
+    s.bytes.resize(size_t(region.width) * size_t(region.height) * 4);
+    synth::render_region(*cmyk_map_, seed_, region, s.bytes.data(), size_t(region.width) * 4,
+                         threads);
+    if (index < preview_tiles_ && !previews_.empty() &&
+        !std::filesystem::exists(preview_path(index)))
+        write_preview(s, preview_path(index));
+    return s;
+}
+
+std::filesystem::path TileRenderer::preview_path(std::int64_t index) const {
+    return previews_ / ("job-" + std::to_string(job_)) / ("tile-" + std::to_string(index) + ".png");
+}
+
+void TileRenderer::write_preview(const Separations& tile, const std::filesystem::path& png) const {
+    const cv::Mat cmyk(tile.height, tile.width, CV_8UC4,
+                       const_cast<std::uint8_t*>(tile.bytes.data()));
+    cv::Mat bgr;
+    cv::cvtColor(transform_->proof(cmyk), bgr, cv::COLOR_RGB2BGR);
+    std::filesystem::create_directories(png.parent_path());
+    cv::imwrite(png.string(), bgr);
+}
+
+}  // namespace tilejet::daemon

@@ -1,0 +1,133 @@
+#pragma once
+
+// DaemonProcess: tilejetd started as a separate process for one test, against a
+// LinesimProcess, with its API on a port the kernel picks and its job store in a private temp
+// folder. The destructor always kills and reaps it; kill() is SIGKILL, the crash under test.
+#include <fcntl.h>
+#include <httplib.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../drivers/linesim_process.hpp"
+
+namespace tilejet::test {
+
+struct DaemonOptions {
+    int speed_mm_s = 1000;
+    int min_speed_mm_s = 100;
+    int render_threads = 2;
+    int queue_tiles = 6;
+};
+
+class DaemonProcess {
+  public:
+    DaemonProcess(const LinesimProcess& line, const std::filesystem::path& dir,
+                  const DaemonOptions& o = {})
+        : config_path_((dir / "tilejetd.toml").string()),
+          log_path_((dir / "tilejetd.log").string()) {
+        std::ifstream in(line.config_path());
+        std::stringstream cfg;
+        cfg << in.rdbuf();
+        cfg << "[colour]\noutput_profile = \"" << TILEJET_TEST_CMYK_PROFILE << "\"\n"
+            << "[storage]\ndatabase = \"" << (dir / "jobs.db").string() << "\"\n"
+            << "previews = \"" << (dir / "previews").string() << "\"\npreview_tiles = 2\n"
+            << "[api]\nport = 0\n"
+            << "[render]\nthreads = " << o.render_threads << "\nqueue_tiles = " << o.queue_tiles
+            << "\ndpi = 20\n"
+            << "[print]\nspeed_mm_s = " << o.speed_mm_s << "\nmin_speed_mm_s = " << o.min_speed_mm_s
+            << "\ndrain_timeout_s = 5\n";
+        std::ofstream(config_path_) << cfg.str();
+        start();
+    }
+    ~DaemonProcess() { stop(SIGTERM); }
+    DaemonProcess(const DaemonProcess&) = delete;
+    DaemonProcess& operator=(const DaemonProcess&) = delete;
+
+    void start() {
+        int out[2];
+        if (pipe(out) != 0) throw std::runtime_error("pipe failed");
+        pid_ = fork();
+        if (pid_ == 0) {
+            dup2(out[1], STDOUT_FILENO);
+            const int log = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+            dup2(log, STDERR_FILENO);
+            close(out[0]);
+            close(out[1]);
+            execl(TILEJETD, TILEJETD, "--config", config_path_.c_str(),
+                  static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        close(out[1]);
+        std::string text;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (text.find('\n') == std::string::npos) {
+            pollfd p{out[0], POLLIN, 0};
+            if (std::chrono::steady_clock::now() > deadline || poll(&p, 1, 200) < 0) break;
+            char buffer[256];
+            if (p.revents == 0) continue;
+            const ssize_t n = read(out[0], buffer, sizeof buffer);
+            if (n <= 0) break;
+            text.append(buffer, size_t(n));
+        }
+        close(out[0]);
+        if (text.find('\n') == std::string::npos) {
+            stop(SIGKILL);
+            throw std::runtime_error("tilejetd did not start; log:\n" + log());
+        }
+        port_ = nlohmann::json::parse(text.substr(0, text.find('\n'))).at("api_port").get<int>();
+    }
+
+    // Signals the daemon and reaps it (SIGKILL after 10 s).
+    void stop(int signal) {
+        if (pid_ <= 0) return;
+        kill(pid_, signal);
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (waitpid(pid_, nullptr, WNOHANG) == 0) {
+            if (std::chrono::steady_clock::now() > deadline) {
+                kill(pid_, SIGKILL);
+                waitpid(pid_, nullptr, 0);
+                break;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        pid_ = -1;
+    }
+
+    std::string log() const {
+        std::ifstream in(log_path_);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+
+    // One API request: {status, parsed body (null when not JSON)}.
+    std::pair<int, nlohmann::json> request(const std::string& method, const std::string& path,
+                                           const std::string& body = {}) const {
+        httplib::Client c("127.0.0.1", port_);
+        c.set_connection_timeout(2, 0);
+        c.set_read_timeout(10, 0);
+        auto r =
+            method == "GET" ? c.Get(path.c_str()) : c.Post(path.c_str(), body, "application/json");
+        if (!r) throw std::runtime_error("tilejetd API not answering on " + path);
+        return {r->status, nlohmann::json::parse(r->body, nullptr, false)};
+    }
+
+    nlohmann::json job(std::int64_t id) const {
+        return request("GET", "/api/jobs/" + std::to_string(id)).second;
+    }
+
+    int port() const { return port_; }
+
+  private:
+    std::string config_path_, log_path_;
+    pid_t pid_ = -1;
+    int port_ = 0;
+};
+
+}  // namespace tilejet::test

@@ -1,0 +1,240 @@
+// tilejetd against tilejet-linesim, both as separate processes on loopback: a job prints every
+// tile exactly once with the bytes an offline render gives, through SIGKILL and restart, an
+// e-stop and a Modbus link drop.
+#include <openssl/evp.h>
+
+#include <catch2/catch.hpp>
+#include <map>
+#include <random>
+
+#include "daemon_process.hpp"
+#include "tilejet/colour/cmyk_map.hpp"
+#include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/sampler.hpp"
+#include "tilejet/synth/tile_region.hpp"
+
+using namespace tilejet;
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kSide = 157;  // 200 mm at 20 dpi
+std::string job_body(int tiles) {
+    return R"({"map":")" TILEJET_TEST_MAP R"(","seed":4242,"tiles":)" + std::to_string(tiles) +
+           R"(,"tile_mm":"200x200","dpi":20})";
+}
+
+std::string sha256_hex(const std::uint8_t* data, size_t size) {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int length = 0;
+    EVP_Digest(data, size, digest, &length, EVP_sha256(), nullptr);
+    std::string out;
+    static const char* hex = "0123456789abcdef";
+    for (unsigned i = 0; i < length; ++i) {
+        out += hex[digest[i] >> 4];
+        out += hex[digest[i] & 15];
+    }
+    return out;
+}
+
+// The separations' SHA-256 per tile, rendered here through synth and colour directly (not
+// through the daemon's code).
+const std::vector<std::string>& reference_hashes(int tiles) {
+    static std::vector<std::string> hashes;
+    if (int(hashes.size()) >= tiles) return hashes;
+    const synth::TextureMap map = synth::load_texture_map(TILEJET_TEST_MAP);
+    colour::ColourSettings settings;
+    settings.output_profile = TILEJET_TEST_CMYK_PROFILE;
+    const colour::CmykTransform transform(settings);
+    const auto cmyk = colour::convert_map(map, transform);
+    hashes.clear();
+    for (int k = 0; k < tiles; ++k) {
+        const auto region = synth::tile_region(4242, std::uint64_t(k), {kSide, kSide});
+        const cv::Mat tile = synth::render_region(*cmyk, 4242, region, 1);
+        REQUIRE(tile.isContinuous());
+        hashes.push_back(sha256_hex(tile.data, tile.total() * tile.elemSize()));
+    }
+    return hashes;
+}
+
+std::int64_t submit(const test::DaemonProcess& d, int tiles) {
+    const auto [status, body] = d.request("POST", "/api/jobs", job_body(tiles));
+    INFO(body.dump());
+    REQUIRE(status == 201);
+    return body.at("id").get<std::int64_t>();
+}
+
+json wait_done(const test::DaemonProcess& d, std::int64_t id, std::chrono::seconds timeout) {
+    json job;
+    test::eventually(
+        [&] {
+            job = d.job(id);
+            return job.value("status", "") == "done";
+        },
+        timeout);
+    INFO(d.log());
+    REQUIRE(job.value("status", "") == "done");
+    return job;
+}
+
+// Every index printed, each with the reference bytes; a tile is printed more than once only
+// when the daemon spoiled it (e-stop under the heads), and then with the same bytes.
+void check_print_log(const test::LinesimProcess& line, std::int64_t id, int tiles,
+                     std::int64_t spoiled) {
+    const auto& reference = reference_hashes(tiles);
+    std::map<int, int> count;
+    for (const json& entry : line.print_log()) {
+        if (entry["status"] != "printed" || entry["job"] != "job-" + std::to_string(id)) continue;
+        const int k = entry["tile"].get<int>();
+        REQUIRE(k >= 0);
+        REQUIRE(k < tiles);
+        INFO("tile " << k);
+        CHECK(entry["sha256"] == reference[size_t(k)]);
+        ++count[k];
+    }
+    int extra = 0;
+    for (int k = 0; k < tiles; ++k) {
+        INFO("tile " << k);
+        CHECK(count[k] >= 1);
+        extra += std::max(0, count[k] - 1);
+    }
+    CHECK(int(count.size()) == tiles);
+    CHECK(extra == spoiled);
+}
+
+test::LinesimOptions line_options() {
+    test::LinesimOptions o;
+    o.speed_mm_s = 1000;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("a job prints every tile exactly once with the offline render's bytes",
+          "[daemon][line]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+
+    // A job whose map is missing or corrupt is refused at submit, naming the field.
+    auto [status, body] =
+        daemon.request("POST", "/api/jobs",
+                       R"({"map":"/nonexistent/x.tjmap","seed":1,"tiles":3,"tile_mm":"200x200"})");
+    CHECK(status == 400);
+    CHECK(body["field"] == "map");
+    const auto corrupt = dir.path() / "corrupt.tjmap";
+    std::ofstream(corrupt) << "TJMAP\r\n\x1a not a map";
+    std::tie(status, body) = daemon.request(
+        "POST", "/api/jobs",
+        R"({"map":")" + corrupt.string() + R"(","seed":1,"tiles":3,"tile_mm":"200x200"})");
+    CHECK(status == 400);
+    CHECK(body["field"] == "map");
+    std::tie(status, body) =
+        daemon.request("POST", "/api/jobs",
+                       R"({"map":")" TILEJET_TEST_MAP
+                       R"(","seed":1,"tiles":3,"tile_mm":"200x200","profile":"/nonexistent.icc"})");
+    CHECK(status == 400);
+    CHECK(body["field"] == "profile");
+
+    // ...and the queue keeps working.
+    const int tiles = 25;
+    const auto id = submit(daemon, tiles);
+    const json job = wait_done(daemon, id, 30s);
+    CHECK(job["printed"] == tiles);
+    check_print_log(line, id, tiles, 0);
+    CHECK(std::filesystem::exists(dir.path() / "previews" / ("job-" + std::to_string(id)) /
+                                  "tile-0.png"));
+}
+
+TEST_CASE("killed with SIGKILL at random moments, the daemon resumes and prints each tile once",
+          "[daemon][line][crash]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 40;
+    const auto id = submit(daemon, tiles);
+    std::mt19937 random(std::random_device{}());
+    std::uniform_int_distribution<int> ms(300, 1500);
+    for (int run = 0; run < 4; ++run) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(ms(random)));
+        daemon.stop(SIGKILL);
+        std::this_thread::sleep_for(std::chrono::milliseconds(ms(random) / 3));
+        daemon.start();
+    }
+    const json job = wait_done(daemon, id, 40s);
+    INFO(daemon.log());
+    check_print_log(line, id, tiles, 0);
+    // Each restart found out what the heads held before sending anything.
+    CHECK(daemon.log().find("resync: heads hold") != std::string::npos);
+}
+
+TEST_CASE(
+    "an e-stop mid-run spoils the tile under the heads, and after acknowledge the job completes",
+    "[daemon][line][estop]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 30;
+    const auto id = submit(daemon, tiles);
+    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    line.control("estop on");
+    REQUIRE(test::eventually(
+        [&] { return daemon.request("GET", "/api/status").second["state"] == "e-stop"; }, 2s));
+    CHECK(line.status()["print_enable"] == false);
+    // Nothing moves while the e-stop is latched, even released, until acknowledged.
+    const auto counter = line.status()["tile_counter"];
+    line.control("estop off");
+    std::this_thread::sleep_for(500ms);
+    CHECK(line.status()["tile_counter"] == counter);
+    CHECK(line.status()["running"] == false);
+    daemon.request("POST", "/api/line/acknowledge", "");
+    const json job = wait_done(daemon, id, 30s);
+    check_print_log(line, id, tiles, job["spoiled"].get<std::int64_t>());
+}
+
+TEST_CASE("a Modbus link drop mid-run ends with every tile printed exactly once",
+          "[daemon][line][link]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 30;
+    const auto id = submit(daemon, tiles);
+    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    line.control("drop-link 1.0");
+    REQUIRE(test::eventually(
+        [&] { return daemon.request("GET", "/api/status").second["link_up"] == false; }, 3s));
+    wait_done(daemon, id, 30s);
+    check_print_log(line, id, tiles, 0);
+    CHECK(daemon.log().find("PLC link down") != std::string::npos);
+}
+
+TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state says why",
+          "[daemon][line][render]") {
+    test::LinesimOptions o = line_options();
+    o.speed_mm_s = 2000;
+    o.tile_pitch_mm = 120;
+    o.tile_length_mm = 60;
+    o.heads_mm = 170;
+    test::LinesimProcess line(o);
+    test::TempDir dir;
+    test::DaemonOptions d;
+    d.speed_mm_s = 2000;
+    d.render_threads = 1;
+    d.queue_tiles = 2;
+    test::DaemonProcess daemon(line, dir.path(), d);
+    // 600 x 600 mm at 100 dpi: 2362 px square, far more than one thread renders at 16 tiles/s.
+    const auto [status, body] = daemon.request(
+        "POST", "/api/jobs",
+        R"({"map":")" TILEJET_TEST_MAP R"(","seed":5,"tiles":12,"tile_mm":"600x600","dpi":100})");
+    REQUIRE(status == 201);
+    std::string reason;
+    REQUIRE(test::eventually(
+        [&] {
+            reason = daemon.request("GET", "/api/status").second.value("reason", "");
+            return reason.find("render behind") != std::string::npos;
+        },
+        20s));
+    CHECK(line.status()["speed_setpoint"].get<int>() < 2000);
+    CHECK(daemon.log().find("conveyor slowed") != std::string::npos);
+}
