@@ -1,0 +1,287 @@
+// tilejet eval: the quality report of a design (design.md section 8, issue 8). Four walls of
+// the same tiles: tilejet's, and the baselines canvas (today's factory practice), cell (the
+// cell image alone) and quilt (every tile quilted on its own); each measured the same way.
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "quality_report.hpp"
+#include "soft_proof_check.hpp"
+#include "tilejet/colour/cmyk_transform.hpp"
+#include "tilejet/synth/colour_match.hpp"
+#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/periodicity.hpp"
+#include "tilejet/synth/quilt.hpp"
+#include "tilejet/synth/repetition.hpp"
+#include "tilejet/synth/seam.hpp"
+#include "tilejet/synth/texture_energy.hpp"
+#include "tilejet/synth/wall.hpp"
+
+namespace tilejet::cli {
+
+namespace {
+
+// Periodicity looks at the top-left corner of the laid wall, at most this size: several cell
+// periods of any practical cell, and an FFT that takes well under a second.
+constexpr int kPeriodicityWindow = 1024;
+constexpr size_t kEnergySamples = 30000;
+constexpr double kCanvasMillimetres = 2000;  // the factory canvas: 2 m x 2 m
+
+struct EvalOptions {
+    std::string map, output, tile_size, profile, exemplar;
+    uint64_t seed = 0;
+    int tiles = 200, columns = 0, threads = 0, quilt_block = 0;
+    double tile_mm = 600;
+};
+
+struct Progress {
+    bool on = isatty(STDERR_FILENO);
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    void say(const std::string& what) const {
+        if (!on) return;
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "\r\033[K  %6.1f s  %s", s, what.c_str());
+        std::fflush(stderr);
+    }
+    synth::MeasureProgress stage(const std::string& method) const {
+        if (!on) return {};
+        return [this, method](std::string_view stage, size_t done, size_t total) {
+            say(method + ": " + std::string(stage) + " " + std::to_string(done) + "/" +
+                std::to_string(total));
+        };
+    }
+    void done() const {
+        if (on) std::fputc('\n', stderr);
+    }
+};
+
+struct Shared {
+    cv::Mat exemplar;
+    std::unique_ptr<synth::TextureEnergy> energy;
+    synth::StepStats exemplar_steps;
+    synth::LabStatistics exemplar_colour;
+    synth::AutocorrelationPeak reference_peak;
+    cv::Size periodicity_window;
+    std::optional<colour::CmykTransform> production, colorimetric;
+};
+
+nlohmann::ordered_json lab_json(const synth::LabColour& c) {
+    return {c.L, c.a, c.b};
+}
+
+MethodSection measure(const std::string& name, const std::string& description,
+                      const synth::Wall& wall, const Shared& shared, const EvalOptions& o,
+                      const std::filesystem::path& dir, const Progress& progress) {
+    MethodSection section{name, description, {}, {}, false};
+    nlohmann::ordered_json& j = section.metrics;
+    const synth::Repetition rep = synth::measure_repetition(wall, o.threads, progress.stage(name));
+    nlohmann::ordered_json curve = nlohmann::ordered_json::object();
+    for (const synth::RepeatPoint& p : rep.curve)
+        curve[std::to_string(p.size)] = p.share;
+    j["repeat_curve"] = curve;
+    j["repeat_scale"] = rep.scale;
+    j["tile_pairs_sharing"] = rep.tile_pairs_sharing;
+    j["shared_window"] = {rep.shared_window.width, rep.shared_window.height};
+
+    progress.say(name + ": periodicity");
+    const synth::AutocorrelationPeak peak = synth::autocorrelation_peak(
+        wall.laid(cv::Rect(cv::Point(0, 0), shared.periodicity_window)));
+    if (shared.reference_peak.value > 0)
+        j["periodicity"] = peak.value / shared.reference_peak.value;
+    else
+        j["periodicity"] = nullptr;  // the exemplar's quilt has no correlation peak at all
+    j["periodicity_peak"] = {
+        {"value", peak.value},
+        {"lag", {peak.lag.x, peak.lag.y}},
+        {"exemplar_quilt_value", shared.reference_peak.value},
+        {"exemplar_quilt_lag", {shared.reference_peak.lag.x, shared.reference_peak.lag.y}}};
+
+    progress.say(name + ": texture energy");
+    j["texture_energy"] = shared.energy->measure(wall.tiles, kEnergySamples, o.seed);
+
+    progress.say(name + ": seams");
+    const synth::SeamStats seams = synth::measure_seams(wall, shared.exemplar_steps, o.threads);
+    if (seams.known)
+        j["seam"] = {{"mean", seams.mean_ratio},
+                     {"p99", seams.p99_ratio},
+                     {"delta_e_mean", seams.seam.mean},
+                     {"delta_e_p99", seams.seam.p99},
+                     {"seam_share", seams.seam_share}};
+    else
+        j["seam"] = nullptr;
+    section.has_seam_picture = seams.known;
+
+    progress.say(name + ": colour");
+    section.colour = synth::lab_statistics(wall.tiles, o.threads);
+    const synth::ColourMatch colour = synth::compare_colour(shared.exemplar_colour, section.colour);
+    j["colour"] = {{"mean_delta_e2000", colour.mean_delta_e2000},
+                   {"histogram_distance", colour.histogram_distance},
+                   {"exemplar_mean_lab", lab_json(colour.exemplar_mean)},
+                   {"wall_mean_lab", lab_json(colour.wall_mean)}};
+    if (shared.production) {
+        progress.say(name + ": soft proof");
+        const SoftProofFigures f = check_soft_proof(wall, *shared.production, *shared.colorimetric);
+        j["colour"]["out_of_gamut_share"] = f.out_of_gamut_share;
+        j["colour"]["soft_proof_delta_e2000"] = f.proof_delta_e2000_mean;
+        j["colour"]["soft_proof_delta_e2000_p95"] = f.proof_delta_e2000_p95;
+    }
+
+    progress.say(name + ": pictures");
+    write_wall_pictures(wall, rep, dir, name);
+    return section;
+}
+
+void run_eval(const EvalOptions& o) {
+    const Progress progress;
+    const Size2 tile = parse_size(o.tile_size, "--tile-size");
+    if (o.tiles < 1) throw std::invalid_argument("--tiles must be at least 1");
+    const std::filesystem::path dir = o.output;
+    std::filesystem::create_directories(dir);
+
+    progress.say("loading");
+    const synth::TextureMap map = synth::load_texture_map(o.map);
+    Shared shared;
+    // The map keeps its source, which is the exemplar itself whenever the exemplar was at
+    // least twice the cell size (else a quilted enlargement of it): --exemplar says for sure.
+    shared.exemplar = o.exemplar.empty() ? map.source : synth::load_exemplar(o.exemplar);
+    const bool source_is_exemplar = o.exemplar.empty() &&
+                                    map.source.cols == map.build.exemplar_width &&
+                                    map.source.rows == map.build.exemplar_height;
+    if (!o.profile.empty()) {
+        colour::ColourSettings settings;
+        settings.output_profile = o.profile;
+        shared.production.emplace(settings);
+        settings.intent = colour::Intent::RelativeColorimetric;
+        shared.colorimetric.emplace(settings);
+    }
+    const int block =
+        o.quilt_block > 0
+            ? o.quilt_block
+            : synth::quilt_block_for_cell(std::min(shared.exemplar.cols, shared.exemplar.rows));
+
+    synth::WallSpec spec{o.tiles, {tile.width, tile.height}, o.columns, o.seed, o.threads};
+    if (spec.columns <= 0) spec.columns = int(std::ceil(std::sqrt(double(o.tiles))));
+    const int rows = (o.tiles + spec.columns - 1) / spec.columns;
+    shared.periodicity_window = {std::min(kPeriodicityWindow, spec.columns * tile.width),
+                                 std::min(kPeriodicityWindow, rows * tile.height)};
+
+    progress.say("exemplar: patch index, statistics, periodicity reference");
+    shared.energy = std::make_unique<synth::TextureEnergy>(shared.exemplar, o.threads);
+    shared.exemplar_steps = synth::neighbour_steps(shared.exemplar);
+    shared.exemplar_colour = synth::lab_statistics({shared.exemplar}, o.threads);
+    shared.reference_peak = synth::autocorrelation_peak(
+        synth::quilt_texture(shared.exemplar, shared.periodicity_window, o.seed ^ 0x9e71ull, block)
+            .rgb);
+    write_rgb_png(shared.exemplar, dir / "exemplar.png");
+
+    const cv::Size canvas(int(std::lround(kCanvasMillimetres / o.tile_mm * tile.width)),
+                          int(std::lround(kCanvasMillimetres / o.tile_mm * tile.width)));
+    ReportPage page;
+    page.window_sizes = synth::repeat_window_sizes({tile.width, tile.height});
+    page.exemplar_colour = shared.exemplar_colour;
+    nlohmann::ordered_json metrics;
+    auto run = [&](const std::string& name, const std::string& what, auto make) {
+        progress.say(name + ": making the wall");
+        const synth::Wall wall = make();
+        page.methods.push_back(measure(name, what, wall, shared, o, dir, progress));
+        metrics[name] = page.methods.back().metrics;
+    };
+    run("tilejet",
+        "tilejet: tiles 0.." + std::to_string(o.tiles - 1) + " of job seed " +
+            std::to_string(o.seed) + " in the wall layout, " + std::to_string(spec.columns) +
+            " tiles wide.",
+        [&] { return synth::tilejet_wall(map, spec); });
+    run("canvas",
+        "canvas: one " + std::to_string(canvas.width) + "x" + std::to_string(canvas.height) +
+            " px canvas (2 m x 2 m at " + std::to_string(int(o.tile_mm)) +
+            " mm per tile width) quilted once from the exemplar, every tile cropped from it at a "
+            "random position.",
+        [&] { return synth::canvas_wall(shared.exemplar, spec, canvas, block); });
+    run("cell", "cell: the map's cell image repeated over the same tile regions, no patches.",
+        [&] { return synth::cell_wall(map, spec); });
+    run("quilt", "quilt: every tile quilted on its own from the exemplar (the offline reference).",
+        [&] { return synth::quilt_wall(shared.exemplar, spec, block); });
+    progress.done();
+
+    {
+        const std::filesystem::path path = dir / "metrics.json";
+        std::ofstream out(path, std::ios::trunc);
+        out << metrics.dump(2) << "\n";
+        if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+    }
+    page.title = "tilejet quality report: " + std::filesystem::path(o.map).filename().string() +
+                 ", seed " + std::to_string(o.seed) + ", " + std::to_string(o.tiles) +
+                 " tiles of " + o.tile_size;
+    page.facts = {
+        "map " + map.id_hex().substr(0, 16) + ", cell " + std::to_string(map.cell_width) + "x" +
+            std::to_string(map.cell_height) + ", exemplar: " +
+            (o.exemplar.empty()
+                 ? std::string(source_is_exemplar
+                                   ? "the map's source, which is the exemplar itself"
+                                   : "the map's source, a quilted enlargement of the exemplar "
+                                     "(pass --exemplar for the original)")
+                 : o.exemplar),
+        "quilting (canvas, quilt, periodicity reference) with " + std::to_string(block) +
+            " px blocks",
+        "periodicity: highest autocorrelation peak at lags of 16 px or more over the wall's "
+        "top-left " +
+            std::to_string(shared.periodicity_window.width) + "x" +
+            std::to_string(shared.periodicity_window.height) +
+            " px, divided by the same for the exemplar quilted to that size",
+        "texture energy: " + std::to_string(kEnergySamples) +
+            " random 8x8 patches per wall, RMS CIELab distance per pixel to the nearest "
+            "exemplar patch",
+        "repeat curve: every window position hashed (2D polynomial hash modulo 2^61-1); equal "
+        "hashes count as identical",
+    };
+    if (!o.profile.empty())
+        page.facts.push_back("profile " + o.profile +
+                             ": out of gamut = relative colorimetric "
+                             "round trip moves the colour by more than CIEDE2000 3; soft proof "
+                             "with perceptual intent, 300% ink limit");
+    write_report_page(page, dir);
+    std::printf("wrote %s/index.html and metrics.json\n", dir.string().c_str());
+}
+
+}  // namespace
+
+void add_eval_commands(CLI::App& app) {
+    auto o = std::make_shared<EvalOptions>();
+    CLI::App* eval = app.add_subcommand("eval",
+                                        "quality report: repetition, periodicity, texture, seams, "
+                                        "colour, against the canvas, cell and quilt baselines");
+    eval->add_option("MAP", o->map, "texture map file")->required();
+    eval->add_option("--seed", o->seed, "job seed")->required();
+    eval->add_option("--tiles", o->tiles, "tiles on the wall (default 200)")
+        ->check(CLI::Range(1, 100000));
+    eval->add_option("--tile-size", o->tile_size, "tile size WxH in px")->required();
+    eval->add_option("--profile", o->profile, "the line's CMYK ICC profile: gamut and soft proof");
+    eval->add_option("--exemplar", o->exemplar,
+                     "the design's exemplar (default: the map's source)");
+    eval->add_option("--columns", o->columns, "tiles per wall row (default: about square)")
+        ->check(CLI::Range(0, 100000));
+    eval->add_option("--tile-mm", o->tile_mm, "tile width in mm, for the 2 m canvas (default 600)")
+        ->check(CLI::Range(10.0, 5000.0));
+    eval->add_option("--quilt-block", o->quilt_block,
+                     "quilting block in px for the baselines (default: exemplar side / 4)")
+        ->check(CLI::Range(0, 4096));
+    eval->add_option("--threads", o->threads, "threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+    eval->add_option("-o,--output", o->output, "report directory")->required();
+    eval->callback([o] { run_eval(*o); });
+}
+
+}  // namespace tilejet::cli
