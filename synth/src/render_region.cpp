@@ -3,9 +3,9 @@
 #include <thread>
 #include <vector>
 
-#include "active_set.hpp"
 #include "diamond.hpp"
 #include "plane_limits.hpp"
+#include "shown_patches.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::synth {
@@ -13,7 +13,6 @@ namespace tilejet::synth {
 namespace {
 
 using detail::CellGrid;
-using detail::floor_div;
 using detail::floor_mod;
 
 // Rows [row0, row1) of the region: first the cell image everywhere, then every active patch
@@ -39,57 +38,24 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
         }
     }
 
-    const int64_t y0 = region.y + row0, y1 = region.y + row1;
-    const uint64_t map_id = map.id64();
-    std::vector<uint16_t> active;
-    for (CellType type : {CellType::A, CellType::B}) {
-        const PatchSet& set = image.set(type);
-        // A diamond reaches at most one cell size beyond its cell on every side.
-        for (int64_t j = floor_div(y0, ch) - 1; j <= floor_div(y1 - 1, ch) + 1; ++j) {
-            const int64_t i_first = floor_div(x0, cw) - 1, i_last = floor_div(x1 - 1, cw) + 1;
-            for (int64_t i = i_first; i <= i_last; ++i) {
-                if (((i + j) & 1) != int64_t(type)) continue;
-                detail::compute_active_set(set, detail::cell_key(map_id, seed, 0, type, i, j),
-                                           active);
-                for (uint16_t k : active) {
-                    const Patch& p = set.patches[k];
-                    const int64_t px = i * cw + p.x, py = j * ch + p.y;
-                    const int64_t top = std::max(py, y0), bottom = std::min(py + p.height, y1);
-                    if (top >= bottom || px >= x1 || px + p.width <= x0) continue;
-                    for (int64_t y = top; y < bottom; ++y) {
-                        const int row = int(y - py);
-                        const uint8_t* src = map.source.ptr<uint8_t>(p.src_y + row);
-                        uint8_t* dst = rgb + size_t(y - region.y) * stride;
-                        for (uint32_t q = p.row_runs[size_t(row)]; q < p.row_runs[size_t(row) + 1];
-                             ++q) {
-                            const MaskRun& run = p.runs[q];
-                            const int64_t a = std::max(px + run.x, x0);
-                            const int64_t b = std::min(px + run.x + run.length, x1);
-                            if (a >= b) continue;
-                            std::memcpy(dst + px_bytes * (a - x0),
-                                        src + px_bytes * (p.src_x + (a - px)),
-                                        size_t(px_bytes * (b - a)));
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
-void check_region(const Region& region) {
-    if (region.width < 0 || region.height < 0)
-        throw SynthError("region size " + std::to_string(region.width) + "x" +
-                         std::to_string(region.height) + " is negative");
-    detail::check_plane_point(region.x, region.y);
-    detail::check_plane_point(region.x + region.width, region.y + region.height);
+    const Patch* patch = nullptr;
+    int64_t patch_x = 0, patch_y = 0;
+    detail::for_each_shown_run(
+        map, seed, x0, x1, region.y + row0, region.y + row1,
+        [&](const Patch& p, int64_t px, int64_t py) { patch = &p, patch_x = px, patch_y = py; },
+        [&](int64_t y, int64_t a, int64_t b) {
+            const uint8_t* src = map.source.ptr<uint8_t>(patch->src_y + int(y - patch_y));
+            std::memcpy(rgb + size_t(y - region.y) * stride + px_bytes * (a - x0),
+                        src + px_bytes * (patch->src_x + (a - patch_x)),
+                        size_t(px_bytes * (b - a)));
+        });
 }
 
 }  // namespace
 
 void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
                    size_t stride, int threads) {
-    check_region(region);
+    detail::check_region(region);
     if (region.width == 0 || region.height == 0) return;
     if (stride < size_t(region.width) * map.source.elemSize())
         throw SynthError("row stride " + std::to_string(stride) + " is shorter than a row");
@@ -109,7 +75,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
 }
 
 cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads) {
-    check_region(region);
+    detail::check_region(region);
     cv::Mat out(region.height, region.width, map.source.type());
     render_region(map, seed, region, out.data, out.step[0], threads);
     return out;
