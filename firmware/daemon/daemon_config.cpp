@@ -102,8 +102,10 @@ DaemonConfig load_daemon_config(const std::string& path) {
     const toml::table root = drivers::load_toml_file(path);
     const ConfigSource src{path};
     for (const auto& [key, node] : root) {
+        // A named copy: lambdas may not capture structured bindings before C++20's P1091 (clang 14).
+        const std::string_view name = key.str();
         const auto known = [&](const auto& list) {
-            return std::find(list.begin(), list.end(), key.str()) != list.end();
+            return std::find(list.begin(), list.end(), name) != list.end();
         };
         if (!known(drivers::kDriverSections) && !known(kDaemonSections))
             throw std::runtime_error(path + ":" + std::to_string(node.source().begin.line) + ": [" +
