@@ -43,6 +43,9 @@ TEST_CASE("broken job requests are rejected naming the field", "[api]") {
     CHECK(rejected_field("") == "body");
     CHECK(rejected_field("[1,2]") == "body");
     CHECK(rejected_field("\xff\xfe") == "body");
+    // Regression (fuzzing): a number too large for a double escaped as an uncaught exception.
+    CHECK(rejected_field("999999999999E99999999999") == "body");
+    CHECK(rejected_field(R"({"map":"/m","seed":1e999999,"tiles":5,"tile_mm":"300x300"})") == "body");
     const std::string ok = R"("map":"/m","seed":1,"tiles":5,"tile_mm":"300x300")";
     CHECK(rejected_field("{" + ok + R"(,"colour":"red"})") == "colour");
     CHECK(rejected_field(R"({"seed":1,"tiles":5,"tile_mm":"300x300"})") == "map");

@@ -57,7 +57,8 @@ jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
     json j;
     try {
         j = json::parse(body);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {
+        // Not only parse_error: a number too large for a double is out_of_range (fuzzing).
         bad("body", std::string("malformed JSON: ") + e.what());
     }
     if (!j.is_object()) bad("body", "expected a JSON object");
