@@ -13,6 +13,7 @@ void add_analyze_commands(CLI::App& app);
 void add_line_commands(CLI::App& app);
 void add_sim_commands(CLI::App& app);
 void add_job_commands(CLI::App& app);
-void add_eval_commands(CLI::App& app);  // tilejet eval: the quality report
+void add_eval_commands(CLI::App& app);   // tilejet eval: the quality report
+void add_synth_commands(CLI::App& app);  // tilejet synth: the offline synthesizers
 
 }  // namespace tilejet::cli

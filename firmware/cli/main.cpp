@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     tilejet::cli::add_sim_commands(app);
     tilejet::cli::add_job_commands(app);
     tilejet::cli::add_eval_commands(app);
+    tilejet::cli::add_synth_commands(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

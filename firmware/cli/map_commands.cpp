@@ -19,7 +19,7 @@ namespace tilejet::cli {
 namespace {
 
 struct BuildOptions {
-    std::string exemplar, output;
+    std::string exemplar, output, enlarge = "quilt";
     synth::BuildParams params;
 };
 
@@ -95,7 +95,16 @@ void add_map_commands(CLI::App& app) {
                 {"auto", synth::BuildParams::Lattice::Auto},
                 {"off", synth::BuildParams::Lattice::Off}},
             CLI::ignore_case));
-    b->callback([build] { run_build(*build); });
+    b->add_option("--colour-gain", build->params.colour_gain,
+                  "near-regular exemplars: how much the lattice tiles' colours differ, 0 all "
+                  "alike, 1 as in the exemplar (default), 2 twice as much");
+    b->add_option("--enlarge", build->enlarge,
+                  "how an exemplar under twice the cell size is enlarged into the source: "
+                  "quilt (default), rsgf or enm");
+    b->callback([build] {
+        build->params.enlarge = synth::parse_synth_method(build->enlarge, "--enlarge");
+        run_build(*build);
+    });
 
     auto info_path = std::make_shared<std::string>();
     CLI::App* i = map->add_subcommand("info", "print a texture map's figures as JSON");

@@ -15,10 +15,13 @@
 #include "patch_overlap.hpp"
 #include "pseudo_biclique.hpp"
 #include "quilting.hpp"
+#include "tilejet/synth/colour_gain.hpp"
+#include "tilejet/synth/enm.hpp"
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/rsgf.hpp"
 
 namespace tilejet::synth {
 
@@ -44,6 +47,8 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
                          " must be at least --patches (" + std::to_string(p.patches) + ")");
     if (!(p.active_per_cell > 0)) throw SynthError("active patches per cell must be positive");
     if (p.threads < 0) throw SynthError("--threads must not be negative");
+    if (!(p.colour_gain >= 0) || !std::isfinite(p.colour_gain))
+        throw SynthError("--colour-gain " + std::to_string(p.colour_gain) + " must be 0 or more");
 }
 
 // Runs body(i) for i in [0, n) on `threads` threads; reports progress from the calling thread.
@@ -185,27 +190,33 @@ cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, c
 
 }  // namespace
 
-TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
+TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                              const BuildProgress& progress) {
-    check_exemplar(exemplar, "exemplar");
-    check_params(params, exemplar);
+    check_exemplar(input, "exemplar");
+    check_params(params, input);
     const int threads = params.threads > 0 ? params.threads
                                            : int(std::max(1u, std::thread::hardware_concurrency()));
     const int square = params.cell_size
                            ? params.cell_size
-                           : std::min(kDefaultCellSize, std::min(exemplar.cols, exemplar.rows));
+                           : std::min(kDefaultCellSize, std::min(input.cols, input.rows));
     const int candidates =
         params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
 
     // Near-regular exemplars get cells whose sides are lattice vectors, so that every cell
     // starts on the same phase of the pattern, and copies that move by lattice translations.
+    // The lattice is the exemplar's geometry, which the colour gain leaves alone.
+    std::optional<Lattice> detected;
+    if (params.lattice == BuildParams::Lattice::Auto || params.colour_gain != 1) {
+        if (progress) progress("lattice", 0, 1);
+        detected = detect_lattice(input);
+    }
+    const cv::Mat exemplar =
+        params.colour_gain == 1 ? input : apply_colour_gain(input, *detected, params.colour_gain);
     std::optional<LatticeTranslations> lattice;
     cv::Size cell_size(square, square);
     if (params.lattice == BuildParams::Lattice::Auto) {
-        if (progress) progress("lattice", 0, 1);
-        const Lattice detected = detect_lattice(exemplar);
-        if (detected.kind != LatticeKind::Stochastic) {
-            LatticeTranslations translations(detected);
+        if (detected->kind != LatticeKind::Stochastic) {
+            LatticeTranslations translations(*detected);
             if (auto rect = translations.cell_size(square, exemplar.size())) {
                 lattice = translations;
                 cell_size = *rect;
@@ -232,11 +243,23 @@ TextureMap build_texture_map(const cv::Mat& exemplar, const BuildParams& params,
         if (progress) progress("source image", 0, 1);
         Rng source_rng(hash_combine(params.seed, kSourceStream));
         // A multiple of the cell size, so that the enlargement wraps on the lattice too.
-        map.source =
-            quilt_toroidal(exemplar, exemplar_lab,
-                           {std::max(exemplar.cols / cell_size.width + 1, 2) * cell_size.width,
-                            std::max(exemplar.rows / cell_size.height + 1, 2) * cell_size.height},
-                           quilt, source_rng);
+        const cv::Size enlarged(
+            std::max(exemplar.cols / cell_size.width + 1, 2) * cell_size.width,
+            std::max(exemplar.rows / cell_size.height + 1, 2) * cell_size.height);
+        const uint64_t source_seed = hash_combine(params.seed, kSourceStream);
+        switch (params.enlarge) {
+            case SynthMethod::Quilt:
+                map.source = quilt_toroidal(exemplar, exemplar_lab, enlarged, quilt, source_rng);
+                break;
+            case SynthMethod::Rsgf:
+                // With --lattice off, rsgf is told there is none: blocks go anywhere.
+                map.source = synthesize_rsgf(exemplar, lattice ? *detected : Lattice{}, enlarged,
+                                             source_seed);
+                break;
+            case SynthMethod::Enm:
+                map.source = synthesize_enm(exemplar, enlarged, source_seed);
+                break;
+        }
     } else {
         map.source = exemplar.clone();
     }

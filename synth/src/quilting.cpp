@@ -163,10 +163,10 @@ class BlockSearch {
     cv::Mat spectrum_[3], energy_spectrum_;
 };
 
-}  // namespace
-
-cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size size,
-                       const QuiltParams& params, Rng& rng) {
+// Quilts over a canvas of `size`; with `wrap` false the canvas is grown by one overlap to the
+// left and top so that no footprint reaches round to the far side, and cropped afterwards.
+cv::Mat quilt(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size size,
+              const QuiltParams& params, Rng& rng, bool wrap) {
     const int o = params.overlap, step = params.block - params.overlap;
     // Each block must reach past its overlap strips, or a cut could not separate them.
     if (o < 1 || step <= o) throw SynthError("quilting block must be over twice its overlap");
@@ -189,14 +189,16 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                          std::to_string(ex_rgb.rows) + " px is too small for quilting blocks of " +
                          std::to_string(params.block) + " px");
 
-    Canvas c{cv::Mat(size, CV_8UC3, cv::Scalar::all(0)),
-             cv::Mat(size, CV_32FC3, cv::Scalar::all(0)), cv::Mat(size, CV_8U, cv::Scalar(0))};
+    const int margin = wrap ? 0 : o;
+    const cv::Size canvas(size.width + margin, size.height + margin);
+    Canvas c{cv::Mat(canvas, CV_8UC3, cv::Scalar::all(0)),
+             cv::Mat(canvas, CV_32FC3, cv::Scalar::all(0)), cv::Mat(canvas, CV_8U, cv::Scalar(0))};
 
     const BlockSearch search(ex_lab, rng);
     for (size_t l = 0; l + 1 < ys.size(); ++l) {
         for (size_t k = 0; k + 1 < xs.size(); ++k) {
             // Footprint: the block plus its overlap to the left and above, wrapping around.
-            const int fx = xs[k] - o, fy = ys[l] - o;
+            const int fx = xs[k] - o + margin, fy = ys[l] - o + margin;
             const int bw = xs[k + 1] - xs[k] + o, bh = ys[l + 1] - ys[l] + o;
             cv::Mat templ(bh, bw, CV_32FC3), mask(bh, bw, CV_8U);
             for (int y = 0; y < bh; ++y)
@@ -243,7 +245,19 @@ cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size si
                 }
         }
     }
-    return c.rgb;
+    return wrap ? c.rgb : c.rgb(cv::Rect(margin, margin, size.width, size.height)).clone();
+}
+
+}  // namespace
+
+cv::Mat quilt_toroidal(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size size,
+                       const QuiltParams& params, Rng& rng) {
+    return quilt(ex_rgb, ex_lab, size, params, rng, true);
+}
+
+cv::Mat quilt_open(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size size,
+                   const QuiltParams& params, Rng& rng) {
+    return quilt(ex_rgb, ex_lab, size, params, rng, false);
 }
 
 }  // namespace tilejet::synth::detail

@@ -23,4 +23,10 @@ struct QuiltParams {
 cv::Mat quilt_toroidal(const cv::Mat& exemplar_rgb, const cv::Mat& exemplar_lab, cv::Size size,
                        const QuiltParams& params, Rng& rng);
 
+// The same quilting on a plain rectangle: nothing wraps, so the left column and top row of
+// blocks match nothing and the result need not tile (the image quilting of the paper, for
+// outputs larger than any cell).
+cv::Mat quilt_open(const cv::Mat& exemplar_rgb, const cv::Mat& exemplar_lab, cv::Size size,
+                   const QuiltParams& params, Rng& rng);
+
 }  // namespace tilejet::synth::detail

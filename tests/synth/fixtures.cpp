@@ -1,6 +1,8 @@
 #include "fixtures.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <random>
 
 #include "tilejet/synth/build.hpp"
@@ -41,6 +43,50 @@ TempDir::~TempDir() {
 void write_file(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+cv::Mat make_lattice_texture(Basis b, cv::Size size, uint32_t seed, bool ellipse) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0, 6), tile_shift(0, 14);
+    std::map<std::pair<int, int>, cv::Vec3d> tile_colour;
+    const double det = b.t1.x * b.t2.y - b.t1.y * b.t2.x;
+    cv::Mat out(size, CV_8UC3);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            // Lattice coordinates of the pixel: solve x = u t1 + v t2.
+            const double u = (x * b.t2.y - y * b.t2.x) / det, v = (y * b.t1.x - x * b.t1.y) / det;
+            const int iu = int(std::floor(u)), iv = int(std::floor(v));
+            const double fu = u - iu, fv = v - iv;
+            auto [it, fresh] = tile_colour.try_emplace({iu, iv});
+            if (fresh) it->second = {tile_shift(rng), tile_shift(rng), tile_shift(rng)};
+            bool inside;
+            if (ellipse) {
+                const double du = (fu - 0.5) / 0.42, dv = (fv - 0.5) / 0.42;
+                inside = du * du + dv * dv < 1;
+            } else {
+                inside = fu > 0.08 && fu < 0.92 && fv > 0.1 && fv < 0.9;
+            }
+            const cv::Vec3d base =
+                inside ? cv::Vec3d(170, 80, 60) + it->second : cv::Vec3d(200, 200, 190);
+            cv::Vec3b& px = out.at<cv::Vec3b>(y, x);
+            for (int c = 0; c < 3; ++c)
+                px[c] = cv::saturate_cast<uint8_t>(base[c] + noise(rng));
+        }
+    return out;
+}
+
+bool same_lattice(const synth::Lattice& found, Basis truth, double tol) {
+    auto on_truth = [&](cv::Point v) {
+        for (int a = -4; a <= 4; ++a)
+            for (int b = -4; b <= 4; ++b) {
+                const cv::Point2d p = a * truth.t1 + b * truth.t2;
+                if (std::hypot(p.x - v.x, p.y - v.y) <= tol) return true;
+            }
+        return false;
+    };
+    const double true_area = std::abs(truth.t1.x * truth.t2.y - truth.t1.y * truth.t2.x);
+    return on_truth(found.v1) && on_truth(found.v2) &&
+           std::abs(found.area() - true_area) < 0.1 * true_area;
 }
 
 }  // namespace tilejet::test

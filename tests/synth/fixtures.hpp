@@ -4,6 +4,7 @@
 #include <opencv2/core/mat.hpp>
 #include <string>
 
+#include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::test {
@@ -29,5 +30,20 @@ class TempDir {
 };
 
 void write_file(const std::filesystem::path& path, const std::string& bytes);
+
+// A lattice's true (possibly fractional) translation vectors.
+struct Basis {
+    cv::Point2d t1, t2;
+};
+
+// A near-regular texture on lattice (t1, t2): each tile a rounded "brick" or "stone" (an
+// ellipse filling most of the tile) in mortar, every tile with its own colour shift, plus
+// per-pixel colour noise, cropped to `size` (not a whole number of periods).
+cv::Mat make_lattice_texture(Basis b, cv::Size size, uint32_t seed, bool ellipse = false);
+
+// Whether every detected vector is (within tol px) a lattice point of the truth and the two
+// lattices have the same cell area: then they are the same lattice up to sign, swap and adding
+// one vector to the other.
+bool same_lattice(const synth::Lattice& found, Basis truth, double tol = 1.5);
 
 }  // namespace tilejet::test

@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 #include <string_view>
 
+#include "tilejet/synth/synthesize.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::synth {
@@ -21,6 +22,12 @@ struct BuildParams {
     // Auto: detect the exemplar's lattice; when it has one, cells are a lattice-compatible
     // rectangle and every copy (quilting blocks, patches) moves by lattice translations only.
     enum class Lattice { Auto, Off } lattice = Lattice::Auto;
+    // Colour-regularity gain of a near-regular exemplar's tiles (colour_gain.hpp), applied to
+    // the exemplar before anything else: 0 every tile the mean tile, 1 unchanged (and no cost).
+    double colour_gain = 1;
+    // How an exemplar under twice the cell size is enlarged into the patches' source: quilting
+    // (toroidal, lattice-aware; the default), rsgf or enm (synthesize.hpp).
+    SynthMethod enlarge = SynthMethod::Quilt;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).

@@ -21,6 +21,10 @@ struct QuiltedImage {
 // small for the blocks.
 QuiltedImage quilt_texture(const cv::Mat& exemplar, cv::Size size, uint64_t seed, int block);
 
+// Quilts `exemplar` (CV_8UC3 R,G,B) to an image of any `size` that does not wrap (tilejet synth
+// --method quilt). `block` 0: a quarter of the exemplar's smaller side, at least 8 px.
+cv::Mat quilt_image(const cv::Mat& exemplar, cv::Size size, uint64_t seed, int block = 0);
+
 // The block size the map build quilts `cell`-px cell images with.
 int quilt_block_for_cell(int cell);
 
