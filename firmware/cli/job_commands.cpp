@@ -1,13 +1,20 @@
 // tilejet job submit | list | show, tilejet pause | resume | stop | ack | status: the daemon's
-// JSON API (tilejetd, loopback HTTP).
+// JSON API (tilejetd, HTTP), signed in as a user of the daemon's config. tilejet passwd makes
+// the password hashes that config holds.
+//
+// Credentials: --user or $TILEJET_USER; the password from $TILEJET_PASSWORD, else the first
+// line of --password-file or $TILEJET_PASSWORD_FILE, else asked for on the terminal.
 
 #include <httplib.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -15,6 +22,7 @@
 
 #include "commands.hpp"
 #include "tilejet/api/job_request.hpp"
+#include "tilejet/api/password.hpp"
 
 namespace tilejet::cli {
 
@@ -29,9 +37,59 @@ std::string api_address(const std::string& option) {
     return "127.0.0.1:8470";
 }
 
+struct Credentials {
+    std::string user, password_file;
+};
+
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+// One line from a terminal with echo off, so the password never shows on the screen.
+std::string ask_password(const std::string& prompt) {
+    if (!isatty(STDIN_FILENO)) {
+        std::string line;
+        if (!std::getline(std::cin, line)) throw std::runtime_error("no password on stdin");
+        return line;
+    }
+    std::fprintf(stderr, "%s", prompt.c_str());
+    termios old{};
+    tcgetattr(STDIN_FILENO, &old);
+    termios quiet = old;
+    quiet.c_lflag &= ~tcflag_t(ECHO);
+    tcsetattr(STDIN_FILENO, TCSANOW, &quiet);
+    std::string line;
+    std::getline(std::cin, line);
+    tcsetattr(STDIN_FILENO, TCSANOW, &old);
+    std::fprintf(stderr, "\n");
+    return line;
+}
+
+std::string password_for(const Credentials& c, const std::string& user) {
+    if (const std::string p = env("TILEJET_PASSWORD"); !p.empty()) return p;
+    const std::string file =
+        c.password_file.empty() ? env("TILEJET_PASSWORD_FILE") : c.password_file;
+    if (!file.empty()) {
+        std::ifstream in(file);
+        std::string line;
+        if (!in || !std::getline(in, line))
+            throw std::runtime_error("password file '" + file + "': cannot read it");
+        return line;
+    }
+    if (!isatty(STDIN_FILENO))
+        throw std::runtime_error(
+            "no password for '" + user +
+            "': set TILEJET_PASSWORD or TILEJET_PASSWORD_FILE, or give --password-file");
+    return ask_password("password for " + user + ": ");
+}
+
+// Signs in at the first request and out again when done: the daemon keeps no session of a
+// finished command.
 class ApiClient {
   public:
-    explicit ApiClient(const std::string& address) : address_(address) {
+    ApiClient(const std::string& address, Credentials credentials)
+        : address_(address), credentials_(std::move(credentials)) {
         const auto colon = address.rfind(':');
         if (colon == std::string::npos)
             throw std::invalid_argument("--api '" + address + "': expected HOST:PORT");
@@ -40,13 +98,36 @@ class ApiClient {
         client_->set_connection_timeout(2, 0);
         client_->set_read_timeout(30, 0);
     }
+    ~ApiClient() {
+        if (!headers_.empty()) client_->Delete("/api/session", headers_);
+    }
+    ApiClient(const ApiClient&) = delete;
+    ApiClient& operator=(const ApiClient&) = delete;
 
-    json get(const std::string& path) { return check(client_->Get(path.c_str()), path); }
+    json get(const std::string& path) {
+        sign_in();
+        return check(client_->Get(path.c_str(), headers_), path);
+    }
     json post(const std::string& path, const json& body) {
-        return check(client_->Post(path.c_str(), body.dump(), "application/json"), path);
+        sign_in();
+        return check(client_->Post(path.c_str(), headers_, body.dump(), "application/json"), path);
     }
 
   private:
+    void sign_in() {
+        if (!headers_.empty()) return;
+        const std::string user =
+            credentials_.user.empty() ? env("TILEJET_USER") : credentials_.user;
+        if (user.empty())
+            throw std::runtime_error("tilejetd wants a user: give --user or set TILEJET_USER");
+        const json body{{"user", user}, {"password", password_for(credentials_, user)}};
+        const auto r = client_->Post("/api/session", body.dump(), "application/json");
+        const json session = check(r, "sign-in as '" + user + "'");
+        const std::string cookie = r->get_header_value("Set-Cookie");
+        headers_ = {{"Cookie", cookie.substr(0, cookie.find(';'))},
+                    {"X-CSRF-Token", session.at("csrf").get<std::string>()}};
+    }
+
     json check(const httplib::Result& r, const std::string& path) {
         if (!r)
             throw std::runtime_error("tilejetd at " + address_ + " is not answering (" +
@@ -62,7 +143,9 @@ class ApiClient {
     }
 
     std::string address_;
+    Credentials credentials_;
     std::unique_ptr<httplib::Client> client_;
+    httplib::Headers headers_;  // the session cookie and CSRF token once signed in
 };
 
 struct SubmitArgs {
@@ -118,13 +201,13 @@ bool wait_for(ApiClient& api, std::int64_t id, int timeout_s) {
     }
 }
 
-void run_submit(const SubmitArgs& a, const std::string& address) {
+void run_submit(const SubmitArgs& a, const std::string& address, const Credentials& who) {
     const auto [w, h] = api::parse_tile_mm(a.tile_mm, "--tile-mm");
     json body{{"map", absolute(a.map)}, {"seed", a.seed},     {"tiles", a.tiles},
               {"tile_mm", {w, h}},      {"layout", a.layout}, {"wall_width", a.wall_width}};
     if (a.dpi) body["dpi"] = a.dpi;
     if (!a.profile.empty()) body["profile"] = absolute(a.profile);
-    ApiClient api(api_address(address));
+    ApiClient api(api_address(address), who);
     const json job = api.post("/api/jobs", body);
     if (!a.wait) {
         std::printf("%s\n", job.dump().c_str());
@@ -134,8 +217,8 @@ void run_submit(const SubmitArgs& a, const std::string& address) {
         throw std::runtime_error(job["name"].get<std::string>() + " did not complete");
 }
 
-void run_list(const std::string& address) {
-    ApiClient api(api_address(address));
+void run_list(const std::string& address, const Credentials& who) {
+    ApiClient api(api_address(address), who);
     std::printf("%-8s %-10s %12s %8s %8s  %s\n", "job", "status", "printed", "spoiled", "missed",
                 "map");
     for (const json& j : api.get("/api/jobs")) {
@@ -148,14 +231,33 @@ void run_list(const std::string& address) {
     }
 }
 
+void run_passwd(const std::string& name, const std::string& role, int iterations) {
+    std::string password = ask_password("new password: ");
+    if (isatty(STDIN_FILENO) && ask_password("again: ") != password)
+        throw std::runtime_error("the passwords differ");
+    if (password.size() < 8) throw std::runtime_error("a password needs at least 8 characters");
+    const std::string hash = api::hash_password(password, iterations);
+    if (name.empty()) {
+        std::printf("%s\n", hash.c_str());
+        return;
+    }
+    std::printf("[[users]]\nname = \"%s\"\nrole = \"%s\"\npassword_hash = \"%s\"\n", name.c_str(),
+                role.c_str(), hash.c_str());
+}
+
 }  // namespace
 
 void add_job_commands(CLI::App& app) {
     auto address = std::make_shared<std::string>();
-    auto add_api_option = [address](CLI::App* c) {
+    auto who = std::make_shared<Credentials>();
+    auto add_api_option = [address, who](CLI::App* c) {
         c->add_option("--api", *address,
                       "tilejetd's API HOST:PORT (default $TILEJET_API or "
                       "127.0.0.1:8470)");
+        c->add_option("--user", who->user, "sign in as this user (default $TILEJET_USER)");
+        c->add_option("--password-file", who->password_file,
+                      "the password is this file's first line (default $TILEJET_PASSWORD, "
+                      "then $TILEJET_PASSWORD_FILE, then asked for)");
     };
 
     CLI::App* job = app.add_subcommand("job", "print jobs on the line (tilejetd)");
@@ -177,18 +279,18 @@ void add_job_commands(CLI::App& app) {
     submit->add_flag("--wait", s->wait, "show progress and wait until the job ends");
     submit->add_option("--timeout", s->timeout_s, "--wait at most this many seconds");
     add_api_option(submit);
-    submit->callback([s, address] { run_submit(*s, *address); });
+    submit->callback([s, address, who] { run_submit(*s, *address, *who); });
 
     CLI::App* list = job->add_subcommand("list", "jobs, newest first");
     add_api_option(list);
-    list->callback([address] { run_list(*address); });
+    list->callback([address, who] { run_list(*address, *who); });
 
     auto id = std::make_shared<std::int64_t>(0);
     CLI::App* show = job->add_subcommand("show", "one job as JSON");
     show->add_option("ID", *id, "job number")->required();
     add_api_option(show);
-    show->callback([id, address] {
-        std::printf("%s\n", ApiClient(api_address(*address))
+    show->callback([id, address, who] {
+        std::printf("%s\n", ApiClient(api_address(*address), *who)
                                 .get("/api/jobs/" + std::to_string(*id))
                                 .dump(2)
                                 .c_str());
@@ -203,8 +305,8 @@ void add_job_commands(CLI::App& app) {
         CLI::App* c = app.add_subcommand(name, help);
         add_api_option(c);
         const std::string route = std::string(name) == "ack" ? "acknowledge" : name;
-        c->callback([route, address] {
-            std::printf("%s\n", ApiClient(api_address(*address))
+        c->callback([route, address, who] {
+            std::printf("%s\n", ApiClient(api_address(*address), *who)
                                     .post("/api/line/" + route, json::object())
                                     .dump()
                                     .c_str());
@@ -212,9 +314,26 @@ void add_job_commands(CLI::App& app) {
     }
     CLI::App* status = app.add_subcommand("status", "the line's state as tilejetd sees it");
     add_api_option(status);
-    status->callback([address] {
-        std::printf("%s\n", ApiClient(api_address(*address)).get("/api/status").dump(2).c_str());
+    status->callback([address, who] {
+        std::printf("%s\n",
+                    ApiClient(api_address(*address), *who).get("/api/status").dump(2).c_str());
     });
+
+    struct PasswdArgs {
+        std::string name, role = "operator";
+        int iterations = api::kPasswordIterations;
+    };
+    auto p = std::make_shared<PasswdArgs>();
+    CLI::App* passwd = app.add_subcommand(
+        "passwd",
+        "hash a password for tilejetd's config (asked for on a terminal, else stdin's first "
+        "line); with NAME, print a whole [[users]] entry");
+    passwd->add_option("NAME", p->name, "user name");
+    passwd->add_option("--role", p->role, "viewer, operator (default) or engineer")
+        ->check(CLI::IsMember({"viewer", "operator", "engineer"}));
+    passwd->add_option("--iterations", p->iterations, "PBKDF2 iterations (tests use few)")
+        ->check(CLI::Range(1, 10'000'000));
+    passwd->callback([p] { run_passwd(p->name, p->role, p->iterations); });
 }
 
 }  // namespace tilejet::cli

@@ -24,6 +24,8 @@ struct LineSnapshot {
     bool estop_latched = false;
     bool conveyor_running = false;
     int speed_setpoint_mm_s = 0;
+    int speed_mm_s = 0;                // measured by the PLC
+    std::uint16_t plc_fault_code = 0;  // the PLC's active fault; 0 = none
     std::uint32_t tile_counter = 0;
     int heads_queue = 0;     // tiles the heads hold (as the daemon tracks them)
     int rendered_ahead = 0;  // tiles ready in the render-ahead queue

@@ -1,5 +1,12 @@
 #include "daemon_api.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "line_faults.hpp"
 #include "tile_renderer.hpp"
 #include "tilejet/api/job_request.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
@@ -7,33 +14,134 @@
 
 namespace tilejet::daemon {
 
-DaemonApi::DaemonApi(const DaemonConfig& config, Controller& controller)
-    : config_(config), controller_(controller), store_(config.storage.database) {}
+namespace {
 
-nlohmann::json DaemonApi::status() {
-    const LineSnapshot s = controller_.snapshot();
-    nlohmann::json j{{"state", std::string(to_string(s.status))},
-                     {"reason", s.reason},
-                     {"link_up", s.link_up},
-                     {"estop_latched", s.estop_latched},
-                     {"conveyor_running", s.conveyor_running},
-                     {"speed_setpoint_mm_s", s.speed_setpoint_mm_s},
-                     {"tile_counter", s.tile_counter},
-                     {"heads_queue", s.heads_queue},
-                     {"rendered_ahead", s.rendered_ahead},
-                     {"line_tiles_printed", s.line_tiles_printed},
-                     {"line_tiles_missed", s.line_tiles_missed},
-                     {"blanks", s.blanks},
-                     {"spoiled", s.spoiled},
-                     {"previews", config_.storage.previews}};
-    if (s.job) {
-        std::lock_guard lock(mutex_);
-        if (auto job = store_.job(*s.job)) j["job"] = api::job_json(*job);
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// The rate shown is over this last stretch: long enough to smooth one tile's jitter, short
+// enough that a stop shows within a minute.
+constexpr auto kRateWindow = std::chrono::seconds(60);
+constexpr int kNextTiles = 6;
+
+json files_in(const std::string& folder, std::initializer_list<const char*> extensions) {
+    json list = json::array();
+    std::error_code ec;
+    if (folder.empty() || !fs::is_directory(folder, ec)) return list;
+    std::vector<fs::path> found;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string ext = entry.path().extension().string();
+        for (const char* e : extensions)
+            if (ext == e && entry.is_regular_file(ec)) found.push_back(entry.path());
     }
+    std::sort(found.begin(), found.end());
+    for (const fs::path& p : found)
+        list.push_back({{"name", p.filename().string()},
+                        {"path", fs::absolute(p).lexically_normal().string()},
+                        {"bytes", fs::file_size(p, ec)}});
+    return list;
+}
+
+// Written beside its final name and renamed: a reader never sees half a file. An existing file
+// is never replaced: queued jobs name it, and their tiles must stay what they were.
+fs::path upload(const std::string& folder, const std::string& name, const std::string& bytes,
+                const char* extension, const char* kind,
+                const std::function<void(const fs::path&)>& check) {
+    if (folder.empty())
+        throw api::ApiError(501, "name",
+                            std::string("no folder for ") + kind + "s in the config ([storage])");
+    if (fs::path(name).extension() != extension)
+        throw api::ApiError(400, "name",
+                            "name: a " + std::string(kind) + " file ends in " + extension);
+    if (bytes.empty()) throw api::ApiError(400, "body", "body: empty file");
+    const fs::path target = fs::path(folder) / name;
+    if (fs::exists(target))
+        throw api::ApiError(409, "name", "name: '" + name + "' exists; upload it under a new name");
+    fs::create_directories(folder);
+    const fs::path temp = fs::path(folder) / ("." + name + ".upload");
+    std::ofstream(temp, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    try {
+        check(temp);
+    } catch (const std::exception& e) {
+        fs::remove(temp);
+        throw api::ApiError(400, "body",
+                            std::string("body: not a usable ") + kind + ": " + e.what());
+    }
+    fs::rename(temp, target);
+    return target;
+}
+
+}  // namespace
+
+DaemonApi::DaemonApi(const DaemonConfig& config, Controller& controller)
+    : config_(config),
+      controller_(controller),
+      store_(config.storage.database),
+      previews_(config.colour) {
+    if (config.api.access.users.empty())
+        log_line("no [[users]] in the config: nobody can sign in to the API or the panel");
+}
+
+double DaemonApi::rate_tiles_per_min(std::int64_t printed) {
+    const auto now = std::chrono::steady_clock::now();
+    rate_samples_.emplace_back(now, printed);
+    while (now - rate_samples_.front().first > kRateWindow)
+        rate_samples_.pop_front();
+    const auto& [t0, n0] = rate_samples_.front();
+    const double seconds = std::chrono::duration<double>(now - t0).count();
+    return seconds < 2 ? 0.0 : double(printed - n0) * 60.0 / seconds;
+}
+
+std::optional<jobs::Job> DaemonApi::wall_job(const LineSnapshot& s) {
+    if (s.job) return store_.job(*s.job);
+    for (const jobs::Job& j : store_.jobs(20))
+        if (j.printed > 0) return j;
+    return std::nullopt;
+}
+
+json DaemonApi::status() {
+    const LineSnapshot s = controller_.snapshot();
+    json j{{"state", std::string(to_string(s.status))},
+           {"reason", s.reason},
+           {"link_up", s.link_up},
+           {"estop_latched", s.estop_latched},
+           {"conveyor_running", s.conveyor_running},
+           {"speed_setpoint_mm_s", s.speed_setpoint_mm_s},
+           {"speed_mm_s", s.speed_mm_s},
+           {"plc_fault_code", s.plc_fault_code},
+           {"tile_counter", s.tile_counter},
+           {"heads_queue", s.heads_queue},
+           {"rendered_ahead", s.rendered_ahead},
+           {"line_tiles_printed", s.line_tiles_printed},
+           {"line_tiles_missed", s.line_tiles_missed},
+           {"blanks", s.blanks},
+           {"spoiled", s.spoiled},
+           {"previews", config_.storage.previews},
+           {"faults", line_faults(s)},
+           {"next_tiles", json::array()},
+           {"wall", nullptr}};
+    std::lock_guard lock(mutex_);
+    j["rate_tiles_per_min"] = rate_tiles_per_min(s.line_tiles_printed);
+    if (s.job) {
+        if (auto job = store_.job(*s.job)) {
+            j["job"] = api::job_json(*job);
+            j["job"]["remaining"] = std::max<std::int64_t>(0, job->spec.tiles - job->printed);
+            // Next to print: what the heads hold, in order, then what goes to them next.
+            json next = json::array();
+            for (const jobs::QueuedTile& t : store_.heads_queue())
+                if (t.job == job->id && int(next.size()) < kNextTiles) next.push_back(t.index);
+            for (std::int64_t k : store_.upcoming(*job, kNextTiles))
+                if (int(next.size()) < kNextTiles) next.push_back(k);
+            j["next_tiles"] = next;
+        }
+    }
+    // What the wall preview shows: the panel fetches it again when `printed` moves.
+    if (const auto w = wall_job(s))
+        j["wall"] = {{"job", w->id}, {"printed", w->printed}, {"name", w->name()}};
     return j;
 }
 
-nlohmann::json DaemonApi::submit(const jobs::JobSpec& spec) {
+json DaemonApi::submit(const jobs::JobSpec& spec) {
     // Rejected here rather than when the line reaches the job: a queue must not stall on a
     // job that can never print.
     try {
@@ -50,22 +158,22 @@ nlohmann::json DaemonApi::submit(const jobs::JobSpec& spec) {
     return api::job_json(store_.add_job(spec));
 }
 
-nlohmann::json DaemonApi::jobs() {
+json DaemonApi::jobs() {
     std::lock_guard lock(mutex_);
-    nlohmann::json list = nlohmann::json::array();
+    json list = json::array();
     for (const jobs::Job& j : store_.jobs())
         list.push_back(api::job_json(j));
     return list;
 }
 
-std::optional<nlohmann::json> DaemonApi::job(std::int64_t id) {
+std::optional<json> DaemonApi::job(std::int64_t id) {
     std::lock_guard lock(mutex_);
     auto j = store_.job(id);
     if (!j) return std::nullopt;
     return api::job_json(*j);
 }
 
-nlohmann::json DaemonApi::command(std::string_view name) {
+json DaemonApi::command(std::string_view name) {
     if (name == "pause")
         controller_.post(Command::pause);
     else if (name == "resume")
@@ -77,6 +185,68 @@ nlohmann::json DaemonApi::command(std::string_view name) {
     else
         throw api::ApiError(404, "command", "no command '" + std::string(name) + "'");
     return {{"accepted", std::string(name)}};
+}
+
+std::string DaemonApi::tile_png(std::int64_t id, std::int64_t index, int max_side) {
+    std::optional<jobs::Job> job;
+    {
+        std::lock_guard lock(mutex_);
+        job = store_.job(id);
+    }
+    if (!job) throw api::ApiError(404, "id", "no job " + std::to_string(id));
+    if (index < 0 || index >= job->spec.tiles)
+        throw api::ApiError(
+            404, "tile",
+            "tile: " + job->name() + " has tiles 0.." + std::to_string(job->spec.tiles - 1));
+    return previews_.tile_png(*job, index, max_side);
+}
+
+std::string DaemonApi::wall_png(int tiles, int max_side) {
+    std::optional<jobs::Job> job;
+    std::vector<std::int64_t> indices;
+    {
+        std::lock_guard lock(mutex_);
+        job = wall_job(controller_.snapshot());
+        if (job) indices = store_.printed_tiles(job->id, tiles);
+    }
+    if (!job || indices.empty()) throw api::ApiError(404, "", "no tiles printed yet");
+    return previews_.wall_png(*job, indices, max_side);
+}
+
+json DaemonApi::designs() {
+    return files_in(config_.storage.designs, {".tjmap"});
+}
+
+json DaemonApi::profiles() {
+    json list = files_in(config_.storage.profiles, {".icc", ".icm"});
+    const std::string fallback = fs::absolute(config_.colour.output_profile).string();
+    for (json& p : list)
+        p["default"] = p["path"] == fallback;
+    return list;
+}
+
+json DaemonApi::add_design(const std::string& name, const std::string& bytes) {
+    const fs::path p = upload(config_.storage.designs, name, bytes, ".tjmap", "design",
+                              [](const fs::path& file) { synth::load_texture_map(file.string()); });
+    log_line("design " + p.string() + " added over the API");
+    return {{"name", name}, {"path", p.string()}};
+}
+
+json DaemonApi::add_profile(const std::string& name, const std::string& bytes) {
+    const fs::path p = upload(config_.storage.profiles, name, bytes, ".icc", "profile",
+                              [this](const fs::path& file) {
+                                  colour::ColourSettings c = config_.colour;
+                                  c.output_profile = file;
+                                  colour::CmykTransform check(c);
+                              });
+    log_line("profile " + p.string() + " added over the API");
+    return {{"name", name}, {"path", p.string()}};
+}
+
+json DaemonApi::reload_config() {
+    if (kill(getpid(), SIGHUP) != 0) throw std::runtime_error("cannot signal the daemon");
+    return {{"reload", "requested"},
+            {"note", "[print] takes effect now; other sections after a restart (see the log)"}};
 }
 
 }  // namespace tilejet::daemon

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "tilejet/api/password.hpp"
 #include "tilejet/drivers/config_parse.hpp"
 
 namespace tilejet::daemon {
@@ -13,7 +14,8 @@ namespace {
 using drivers::ConfigSection;
 using drivers::ConfigSource;
 
-constexpr std::array<const char*, 5> kDaemonSections{"colour", "storage", "api", "render", "print"};
+constexpr std::array<const char*, 6> kDaemonSections{"colour", "storage", "api",
+                                                     "users",  "render",  "print"};
 
 const toml::table* section(const toml::table& root, const char* name, const ConfigSource& src) {
     const toml::node* node = root.get(name);
@@ -52,6 +54,8 @@ StorageConfig parse_storage(const toml::table* t, const ConfigSource& src) {
     c.database = resolve(src, s.get_string("database", c.database));
     c.previews = resolve(src, s.get_string("previews", c.previews));
     c.preview_tiles = int(s.get_int("preview_tiles", c.preview_tiles, 0, 1000));
+    c.designs = resolve(src, s.get_string("designs", ""));
+    c.profiles = resolve(src, s.get_string("profiles", ""));
     s.finish();
     return c;
 }
@@ -61,10 +65,58 @@ ApiConfig parse_api(const toml::table* t, const ConfigSource& src) {
     ApiConfig c;
     c.host = s.get_string("host", c.host);
     c.port = int(s.get_int("port", c.port, 0, 65535));
-    // The API has no sign-in yet (the panel issue adds it): it must not leave this machine.
-    if (!(c.host == "localhost" || c.host == "::1" || c.host.starts_with("127.")))
-        s.fail("host", "'" + c.host + "' is not a loopback address");
+    auto& a = c.access;
+    a.sessions.idle = std::chrono::minutes(
+        s.get_int("session_idle_minutes", a.sessions.idle.count() / 60, 1, 7 * 24 * 60));
+    a.sessions.lifetime = std::chrono::hours(s.get_int(
+        "session_hours",
+        std::chrono::duration_cast<std::chrono::hours>(a.sessions.lifetime).count(), 1, 7 * 24));
+    a.sign_in.failures_per_user =
+        int(s.get_int("sign_in_failures_per_user", a.sign_in.failures_per_user, 1, 1000));
+    a.sign_in.failures_per_address =
+        int(s.get_int("sign_in_failures_per_address", a.sign_in.failures_per_address, 1, 10000));
+    a.sign_in.window =
+        std::chrono::seconds(s.get_int("sign_in_window_s", a.sign_in.window.count(), 1, 24 * 3600));
+    a.event_streams = int(s.get_int("event_streams", a.event_streams, 1, 256));
     s.finish();
+    return c;
+}
+
+// [[users]]: name, role, password_hash (tilejet passwd makes the hash).
+std::vector<api::User> parse_users(const toml::table& root, const ConfigSource& src) {
+    std::vector<api::User> users;
+    const toml::node* node = root.get("users");
+    if (!node) return users;
+    const toml::array* list = node->as_array();
+    if (!list || !list->is_array_of_tables())
+        throw std::runtime_error(src.file + ":" + std::to_string(node->source().begin.line) +
+                                 ": 'users' must be [[users]] tables");
+    for (const toml::node& entry : *list) {
+        ConfigSection s(entry.as_table(), src, "users");
+        api::User u;
+        u.name = s.require_string("name");
+        if (u.name.empty() || u.name.size() > 64 ||
+            u.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                     "0123456789._-") != std::string::npos)
+            s.fail("name", "'" + u.name + "': 1..64 letters, digits, '.', '_' or '-'");
+        u.role = *api::parse_role(s.get_choice("role", "", {"viewer", "operator", "engineer"}));
+        u.password_hash = s.require_string("password_hash");
+        try {
+            api::check_password_hash(u.password_hash);
+        } catch (const std::exception& e) {
+            s.fail("password_hash", e.what());
+        }
+        for (const api::User& other : users)
+            if (other.name == u.name) s.fail("name", "user '" + u.name + "' appears twice");
+        s.finish();
+        users.push_back(std::move(u));
+    }
+    return users;
+}
+
+ApiConfig parse_api_and_users(const toml::table& root, const ConfigSource& src) {
+    ApiConfig c = parse_api(section(root, "api", src), src);
+    c.access.users = parse_users(root, src);
     return c;
 }
 
@@ -102,7 +154,8 @@ DaemonConfig load_daemon_config(const std::string& path) {
     const toml::table root = drivers::load_toml_file(path);
     const ConfigSource src{path};
     for (const auto& [key, node] : root) {
-        // A named copy: lambdas may not capture structured bindings before C++20's P1091 (clang 14).
+        // A named copy: lambdas may not capture structured bindings before C++20's P1091 (clang
+        // 14).
         const std::string_view name = key.str();
         const auto known = [&](const auto& list) {
             return std::find(list.begin(), list.end(), name) != list.end();
@@ -118,7 +171,7 @@ DaemonConfig load_daemon_config(const std::string& path) {
         .drivers = std::move(d),
         .colour = parse_colour(section(root, "colour", src), src),
         .storage = parse_storage(section(root, "storage", src), src),
-        .api = parse_api(section(root, "api", src), src),
+        .api = parse_api_and_users(root, src),
         .render = parse_render(section(root, "render", src), src),
         .print = print,
     };

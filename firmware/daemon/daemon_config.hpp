@@ -4,13 +4,15 @@
 // own, each read by one parse function and used by one part of the daemon:
 //   [colour]   ColourSettings for every job's CMYK transform (tile_renderer)
 //   [storage]  job store and previews (jobs/, tile_renderer)
-//   [api]      the HTTP API's loopback address (api/)
+//   [api]      the HTTP API's and panel's address, sessions, sign-in limits (api/)
+//   [[users]]  who may sign in, with which role and password hash (api/)
 //   [render]   render-ahead pool and the default resolution (render_ahead)
 //   [print]    conveyor speeds and the print loop's timing (print_loop)
 // An unknown section or key stops the daemon with file, section, key and line.
 #include <chrono>
 #include <string>
 
+#include "tilejet/api/access.hpp"
 #include "tilejet/colour/colour_settings.hpp"
 #include "tilejet/drivers/config.hpp"
 
@@ -20,11 +22,14 @@ struct StorageConfig {
     std::string database = "/var/lib/tilejet/jobs.db";
     std::string previews = "/var/lib/tilejet/previews";
     int preview_tiles = 8;  // sRGB proofs of each job's first tiles
+    std::string designs;    // texture maps (*.tjmap) the panel offers; engineers upload here
+    std::string profiles;   // CMYK output profiles (*.icc) the panel offers
 };
 
 struct ApiConfig {
     std::string host = "127.0.0.1";
-    int port = 8470;  // 0: the kernel picks (tests); the daemon logs the port it got
+    int port = 8470;             // 0: the kernel picks (tests); the daemon logs the port it got
+    api::AccessSettings access;  // users from [[users]], the rest from [api]
 };
 
 struct RenderConfig {

@@ -3,6 +3,7 @@
 // DaemonProcess: tilejetd started as a separate process for one test, against a
 // LinesimProcess, with its API on a port the kernel picks and its job store in a private temp
 // folder. The destructor always kills and reaps it; kill() is SIGKILL, the crash under test.
+// Its config has one user of each role (kTestUsers); request() signs in as the operator.
 #include <fcntl.h>
 #include <httplib.h>
 #include <poll.h>
@@ -15,8 +16,23 @@
 #include <sstream>
 
 #include "../drivers/linesim_process.hpp"
+#include "tilejet/api/password.hpp"
 
 namespace tilejet::test {
+
+struct TestUser {
+    const char* name;
+    const char* role;
+    const char* password;
+};
+inline constexpr TestUser kTestUsers[] = {{"olga", "operator", "olga-operator-pw"},
+                                          {"erik", "engineer", "erik-engineer-pw"},
+                                          {"vera", "viewer", "vera-viewer-pw"}};
+
+// A signed-in client's headers: the session cookie and the CSRF token.
+struct SignedIn {
+    httplib::Headers headers;
+};
 
 struct DaemonOptions {
     int speed_mm_s = 1000;
@@ -37,11 +53,16 @@ class DaemonProcess {
         cfg << "[colour]\noutput_profile = \"" << TILEJET_TEST_CMYK_PROFILE << "\"\n"
             << "[storage]\ndatabase = \"" << (dir / "jobs.db").string() << "\"\n"
             << "previews = \"" << (dir / "previews").string() << "\"\npreview_tiles = 2\n"
+            << "designs = \"" << (dir / "designs").string() << "\"\n"
             << "[api]\nport = 0\n"
             << "[render]\nthreads = " << o.render_threads << "\nqueue_tiles = " << o.queue_tiles
             << "\ndpi = 20\n"
             << "[print]\nspeed_mm_s = " << o.speed_mm_s << "\nmin_speed_mm_s = " << o.min_speed_mm_s
             << "\ndrain_timeout_s = 5\n";
+        // Few PBKDF2 iterations: every test signs in, and the hash's strength is not under test.
+        for (const TestUser& u : kTestUsers)
+            cfg << "[[users]]\nname = \"" << u.name << "\"\nrole = \"" << u.role
+                << "\"\npassword_hash = \"" << api::hash_password(u.password, 1000) << "\"\n";
         std::ofstream(config_path_) << cfg.str();
         start();
     }
@@ -106,16 +127,55 @@ class DaemonProcess {
         return s.str();
     }
 
-    // One API request: {status, parsed body (null when not JSON)}.
+    // Signs in as `user` (one of kTestUsers); throws unless the daemon says yes.
+    SignedIn sign_in(const std::string& user) const {
+        for (const TestUser& u : kTestUsers)
+            if (u.name == user) {
+                const auto r =
+                    client().Post("/api/session",
+                                  nlohmann::json{{"user", u.name}, {"password", u.password}}.dump(),
+                                  "application/json");
+                if (!r || r->status != 200)
+                    throw std::runtime_error("sign-in as " + user + " refused");
+                const std::string cookie = r->get_header_value("Set-Cookie");
+                return {{{"Cookie", cookie.substr(0, cookie.find(';'))},
+                         {"X-CSRF-Token", nlohmann::json::parse(r->body).at("csrf")}}};
+            }
+        throw std::invalid_argument("no test user " + user);
+    }
+
+    // One API request as the operator: {status, parsed body (null when not JSON)}.
     std::pair<int, nlohmann::json> request(const std::string& method, const std::string& path,
                                            const std::string& body = {}) const {
+        if (!operator_ || operator_port_ != port_) {
+            operator_ = sign_in("olga");
+            operator_port_ = port_;
+        }
+        auto answer = request_as(*operator_, method, path, body);
+        // A restarted daemon has forgotten the session (same port or not): sign in once more.
+        if (answer.first == 401) {
+            operator_ = sign_in("olga");
+            answer = request_as(*operator_, method, path, body);
+        }
+        return answer;
+    }
+    std::pair<int, nlohmann::json> request_as(const SignedIn& who, const std::string& method,
+                                              const std::string& path,
+                                              const std::string& body = {}) const {
+        auto c = client();
+        auto r = method == "GET"      ? c.Get(path.c_str(), who.headers)
+                 : method == "PUT"    ? c.Put(path.c_str(), who.headers, body, "application/json")
+                 : method == "DELETE" ? c.Delete(path.c_str(), who.headers)
+                                      : c.Post(path.c_str(), who.headers, body, "application/json");
+        if (!r) throw std::runtime_error("tilejetd API not answering on " + path);
+        return {r->status, nlohmann::json::parse(r->body, nullptr, false)};
+    }
+
+    httplib::Client client() const {
         httplib::Client c("127.0.0.1", port_);
         c.set_connection_timeout(2, 0);
         c.set_read_timeout(10, 0);
-        auto r =
-            method == "GET" ? c.Get(path.c_str()) : c.Post(path.c_str(), body, "application/json");
-        if (!r) throw std::runtime_error("tilejetd API not answering on " + path);
-        return {r->status, nlohmann::json::parse(r->body, nullptr, false)};
+        return c;
     }
 
     nlohmann::json job(std::int64_t id) const {
@@ -128,6 +188,8 @@ class DaemonProcess {
     std::string config_path_, log_path_;
     pid_t pid_ = -1;
     int port_ = 0;
+    mutable std::optional<SignedIn> operator_;
+    mutable int operator_port_ = 0;
 };
 
 }  // namespace tilejet::test

@@ -4,10 +4,21 @@
 
 #include <stdexcept>
 
+#include "event_hub.hpp"
+#include "gate.hpp"
 #include "routes.hpp"
 #include "tilejet/api/job_request.hpp"
 
 namespace tilejet::api {
+
+namespace {
+
+// Uploaded maps and profiles are the largest bodies; JSON routes hold theirs to kMaxBodyBytes.
+constexpr std::size_t kMaxUploadBytes = 16 * 1024 * 1024;
+// Requests other than event streams are short; these threads are always there for them.
+constexpr int kRequestThreads = 8;
+
+}  // namespace
 
 void reply_json(httplib::Response& res, int status, const nlohmann::json& body) {
     res.status = status;
@@ -21,13 +32,19 @@ void reply_error(httplib::Response& res, int status, const std::string& field,
     reply_json(res, status, j);
 }
 
-ApiServer::ApiServer(ApiBackend& backend, const std::string& host, int port)
-    : server_(std::make_unique<httplib::Server>()) {
-    if (!(host == "localhost" || host == "::1" || host.starts_with("127.")))
-        throw std::invalid_argument("API: '" + host + "' is not a loopback address");
-    server_->set_payload_max_length(kMaxBodyBytes);
+ApiServer::ApiServer(ApiBackend& backend, const std::string& host, int port,
+                     const AccessSettings& access)
+    : gate_(std::make_unique<Gate>(access)),
+      events_(std::make_unique<EventHub>(backend, access.event_streams)),
+      server_(std::make_unique<httplib::Server>()) {
+    const int threads = access.event_streams + kRequestThreads;
+    // httplib owns the queue it gets (its interface takes a plain pointer).
+    server_->new_task_queue = [threads] { return new httplib::ThreadPool(size_t(threads)); };
+    server_->set_payload_max_length(kMaxUploadBytes);
     server_->set_read_timeout(5, 0);
     server_->set_write_timeout(5, 0);
+    // An idle keep-alive connection holds its thread until this runs out, shutdown included.
+    server_->set_keep_alive_timeout(2);
     server_->set_exception_handler([](const auto&, auto& res, std::exception_ptr ep) {
         try {
             std::rethrow_exception(ep);
@@ -44,8 +61,25 @@ ApiServer::ApiServer(ApiBackend& backend, const std::string& host, int port)
                                                      : "request refused";
         reply_error(res, res.status, res.status == 413 ? "body" : "", what);
     });
+    server_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+        return gate_->check(req, res);
+    });
+    server_->set_post_routing_handler([](const httplib::Request&, httplib::Response& res) {
+        // The panel loads nothing from elsewhere and is never framed (clickjacking a Stop).
+        res.set_header("Content-Security-Policy",
+                       "default-src 'self'; img-src 'self' data:; frame-ancestors 'none'; "
+                       "base-uri 'none'; form-action 'self'");
+        res.set_header("X-Content-Type-Options", "nosniff");
+        res.set_header("X-Frame-Options", "DENY");
+        res.set_header("Referrer-Policy", "no-referrer");
+    });
+    add_session_routes(*server_, *gate_);
+    add_event_routes(*server_, *events_, *gate_);
     add_job_routes(*server_, backend);
     add_line_routes(*server_, backend);
+    add_picture_routes(*server_, backend);
+    add_design_routes(*server_, backend);
+    add_panel_routes(*server_);
     port_ = port == 0 ? server_->bind_to_any_port(host)
                       : (server_->bind_to_port(host, port) ? port : -1);
     if (port_ <= 0)
@@ -54,6 +88,7 @@ ApiServer::ApiServer(ApiBackend& backend, const std::string& host, int port)
 }
 
 ApiServer::~ApiServer() {
+    events_->close();
     server_->stop();
     if (thread_.joinable()) thread_.join();
 }

@@ -1,5 +1,6 @@
 #include "tilejet/jobs/job_store.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace tilejet::jobs {
@@ -233,6 +234,17 @@ std::optional<TileState> JobStore::tile_state(std::int64_t job, std::int64_t ind
 std::int64_t JobStore::last_seq() {
     auto s = db_.prepare("SELECT coalesce(max(seq), 0) FROM tiles");
     return s.step() ? s.integer(0) : 0;
+}
+
+std::vector<std::int64_t> JobStore::printed_tiles(std::int64_t job, int limit) {
+    auto s = db_.prepare(
+        "SELECT idx FROM tiles WHERE job = ? AND state = 'printed' ORDER BY idx DESC LIMIT ?");
+    s.bind(1, job).bind(2, std::int64_t(limit));
+    std::vector<std::int64_t> out;
+    while (s.step())
+        out.push_back(s.integer(0));
+    std::reverse(out.begin(), out.end());
+    return out;
 }
 
 }  // namespace tilejet::jobs

@@ -1,0 +1,48 @@
+#pragma once
+
+// Who may do what: users and roles from the config, and the session and sign-in limits.
+//   viewer    sees the panel (an office screen, a supervisor)
+//   operator  runs the line: submits jobs of existing designs, pause, resume, stop, acknowledge
+//   engineer  also sets up the line: uploads designs and profiles, reloads the config
+#include <chrono>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tilejet::api {
+
+enum class Role { viewer, operator_, engineer };  // ordered: each may do what those before may
+std::optional<Role> parse_role(std::string_view text);
+std::string_view to_string(Role role);
+
+struct User {
+    std::string name;
+    Role role = Role::viewer;
+    std::string password_hash;  // see password.hpp
+};
+
+struct SessionSettings {
+    // A panel left signed in on the line is somebody else's hands on it after a shift change.
+    std::chrono::seconds idle{std::chrono::hours(2)};
+    std::chrono::seconds lifetime{std::chrono::hours(12)};
+    int max_sessions = 64;  // oldest signed out first when full
+};
+
+struct SignInLimits {
+    int failures_per_user = 5;      // failed sign-ins per user per window, then 429
+    int failures_per_address = 20;  // per client address: guessing across many user names
+    std::chrono::seconds window{60};
+};
+
+// Everything about who gets in, for ApiServer.
+struct AccessSettings {
+    std::vector<User> users;
+    SessionSettings sessions;
+    SignInLimits sign_in;
+    // Open /api/events streams each hold one server thread; past this many, new ones get 503
+    // so that the API itself always has threads left.
+    int event_streams = 8;
+};
+
+}  // namespace tilejet::api

@@ -1,0 +1,47 @@
+#pragma once
+
+// The gate every request passes before its route: sessions, CSRF tokens and roles, decided in
+// one place (kPermissions in gate.cpp) so that no route can forget them.
+#include <httplib.h>
+
+#include <map>
+#include <optional>
+
+#include "sessions.hpp"
+#include "sign_in_limiter.hpp"
+#include "tilejet/api/api_server.hpp"
+
+namespace tilejet::api {
+
+inline constexpr const char* kSessionCookie = "tilejet_session";
+inline constexpr const char* kCsrfHeader = "X-CSRF-Token";
+
+// The session id the request's cookie carries.
+std::optional<std::string> session_cookie(const httplib::Request& req);
+
+class Gate {
+  public:
+    // Throws std::invalid_argument on a duplicate user name or a malformed password hash.
+    explicit Gate(const AccessSettings& settings);
+
+    // Pre-routing: answers 401 (no session), 403 (CSRF token or role) itself and returns
+    // Handled; Unhandled lets the request reach its route.
+    httplib::Server::HandlerResponse check(const httplib::Request& req, httplib::Response& res);
+
+    // POST /api/session: throws ApiError 400 (body), 401 (user or password), 429 (too many).
+    Session sign_in(const httplib::Request& req);
+    std::optional<Session> session(const httplib::Request& req, bool touch = true);
+    void sign_out(const httplib::Request& req);
+    // Whether the session with this id is still signed in (event streams ask as they go on).
+    bool alive(const std::string& id) { return sessions_.find(id, false).has_value(); }
+    std::chrono::seconds session_lifetime() const { return settings_.lifetime; }
+
+  private:
+    std::map<std::string, User> users_;
+    std::string dummy_hash_;  // verified against for unknown users: same time as a known one
+    SessionSettings settings_;
+    SessionStore sessions_;
+    SignInLimiter limiter_;
+};
+
+}  // namespace tilejet::api
