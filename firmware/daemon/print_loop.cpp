@@ -87,7 +87,12 @@ void PrintLoop::turn() {
         std::lock_guard lock(reload_mutex_);
         if (reload_) {
             print_ = *std::exchange(reload_, std::nullopt);
-            speed_ = std::min(speed_, print_.speed_mm_s);
+            // A lower top speed applies to a running conveyor at once; a higher one is reached
+            // step by step while render-ahead keeps up (print_turn).
+            if (speed_ > print_.speed_mm_s) {
+                speed_ = print_.speed_mm_s;
+                if (run_commanded_) line_->set_speed(std::uint16_t(speed_));
+            }
             log_line("reloaded [print]: speed " + std::to_string(print_.speed_mm_s) + " mm/s");
         }
     }
