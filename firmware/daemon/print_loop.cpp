@@ -386,6 +386,7 @@ void PrintLoop::print_turn() {
         }
         while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ && send_next(false)) {
         }
+        if (!mirror_.empty() && !heads_hold_mirror()) return;  // the next turn fills them again
         if (!mirror_.empty())
             start_conveyor();
         else
@@ -474,10 +475,11 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
                                       bool deadline_applies) {
     const std::int64_t seq = ++seq_;
     store_.mark_sending(entry.job, entry.index, seq);
+    int held = 0;
     try {
-        heads_->send({"job-" + std::to_string(entry.job),
-                      std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
-                     print_.send_timeout);
+        held = heads_->send({"job-" + std::to_string(entry.job),
+                             std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
+                            print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
         store_.unmark_sending(entry.job, entry.index);
         return SendResult::busy;
@@ -495,7 +497,52 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
                  " too close to a tile's arrival: resync");
         mirror_certain_ = false;
     }
+    // By rule 2 no tile reached the heads since the last poll, so with a certain mirror the
+    // heads must hold exactly what it lists.
+    if (mirror_certain_) heads_agree(held);
     return SendResult::sent;
+}
+
+bool PrintLoop::heads_hold_mirror() {
+    // Asked before every start: heads that restarted while the conveyor stood (paused, e-stop,
+    // fault) and kept their buffer full would otherwise be taken as printing the lost tiles.
+    int held = 0;
+    try {
+        held = heads_->held(print_.send_timeout);
+    } catch (const std::exception& e) {
+        log_line("heads: " + std::string(e.what()));
+        return false;
+    }
+    return heads_agree(held);
+}
+
+bool PrintLoop::heads_agree(int held) {
+    if (held < int(mirror_.size())) {
+        on_heads_lost(mirror_.size() - size_t(held));
+        return false;
+    }
+    if (held > int(mirror_.size())) {
+        log_line("heads hold " + std::to_string(held) + " tiles, " +
+                 std::to_string(mirror_.size()) + " expected: resync");
+        mirror_certain_ = false;
+        return false;
+    }
+    return true;
+}
+
+void PrintLoop::on_heads_lost(std::size_t count) {
+    // The heads emptied their buffer (a restart): the oldest entries are gone unprinted. They
+    // are marked missed and go out again, same index, same bytes.
+    std::string lost;
+    for (std::size_t i = 0; i < count; ++i) {
+        const HeadEntry e = mirror_.front();
+        mirror_.pop_front();
+        if (!e.known || e.index < 0) continue;
+        store_.mark_missed(e.job, e.index);
+        lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
+    }
+    log_line("heads lost " + std::to_string(count) + " tile(s) before printing them" +
+             (lost.empty() ? std::string() : ": missed, printed again: " + lost));
 }
 
 bool PrintLoop::resync() {

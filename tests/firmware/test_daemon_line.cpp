@@ -248,3 +248,28 @@ TEST_CASE("SIGHUP reloads the print speed; a broken config is refused and the ol
     CHECK(line.status()["speed_setpoint"] == 600);
     check_print_log(line, id, tiles, 0);
 }
+
+TEST_CASE("tiles the heads lose before printing are marked missed and printed again",
+          "[daemon][line][heads]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 30;
+    const auto id = submit(daemon, tiles);
+    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    // Paused, the conveyor stands with tiles in the heads; then the head controller restarts.
+    daemon.request("POST", "/api/line/pause", "");
+    REQUIRE(test::eventually(
+        [&] {
+            const json s = line.status();
+            return s["running"] == false && s["head_buffer"].get<int>() > 0;
+        },
+        5s));
+    const int held = line.status()["head_buffer"].get<int>();
+    line.control("heads-reset");
+    daemon.request("POST", "/api/line/resume", "");
+    const json job = wait_done(daemon, id, 30s);
+    CHECK(job["missed"] == held);
+    CHECK(daemon.log().find("heads lost") != std::string::npos);
+    check_print_log(line, id, tiles, 0);
+}
