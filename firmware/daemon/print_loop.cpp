@@ -254,14 +254,8 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
     }
     const Clock::time_point estop_at{std::chrono::duration_cast<Clock::duration>(at)};
     if (last_printed_ && state_.status() == LineStatus::printing) {
-        // A tile is under the heads from its leading edge until its trailing edge has passed:
-        // tile_length / speed. Printing it may have stopped half way: spoiled.
-        const double speed = std::max(
-            1.0,
-            std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
-        const auto under = std::chrono::duration_cast<Clock::duration>(
-            std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
-        if (estop_at - last_printed_->arrived_after < under) {
+        // Printing the tile under the heads may have stopped half way: spoiled.
+        if (estop_at - last_printed_->arrived_after < under_heads()) {
             const HeadEntry& e = last_printed_->entry;
             store_.mark_spoiled(e.job, e.index);
             ++spoiled_;
@@ -443,6 +437,16 @@ void PrintLoop::start_conveyor() {
     state_.set(LineStatus::printing, job_->name());
 }
 
+PrintLoop::Clock::duration PrintLoop::under_heads() const {
+    // From its leading edge until its trailing edge has passed: tile_length / speed, at the
+    // slowest speed the line may be running.
+    const double speed = std::max(
+        1.0,
+        std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
+    return std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
+}
+
 PrintLoop::Clock::duration PrintLoop::pitch_time() const {
     // At the fastest speed the line may run, so that it is never longer than the real one.
     const double fastest = std::max<double>(
@@ -475,11 +479,10 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
                                       bool deadline_applies) {
     const std::int64_t seq = ++seq_;
     store_.mark_sending(entry.job, entry.index, seq);
-    int held = 0;
     try {
-        held = heads_->send({"job-" + std::to_string(entry.job),
-                             std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
-                            print_.send_timeout);
+        heads_->send({"job-" + std::to_string(entry.job),
+                      std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
+                     print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
         store_.unmark_sending(entry.job, entry.index);
         return SendResult::busy;
@@ -497,9 +500,9 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
                  " too close to a tile's arrival: resync");
         mirror_certain_ = false;
     }
-    // By rule 2 no tile reached the heads since the last poll, so with a certain mirror the
-    // heads must hold exactly what it lists.
-    if (mirror_certain_) heads_agree(held);
+    // The heads' count in the answer is not compared with the mirror: while the conveyor runs a
+    // tile may take the oldest separations during the send (rule 2 only keeps a send ahead of
+    // the tile it is for). heads_hold_mirror asks before each start, when nothing can arrive.
     return SendResult::sent;
 }
 
@@ -637,7 +640,10 @@ void PrintLoop::check_job_done() {
     }
     if (cancelled) stop_job_ = true;
     job_ = job;
-    if (job->printed >= job->spec.tiles) {
+    // Done once the last tile is clear of the heads: an e-stop before that spoils it.
+    const bool last_under_heads = last_printed_ && last_printed_->entry.job == job->id &&
+                                  Clock::now() - last_printed_->arrived_after < under_heads();
+    if (job->printed >= job->spec.tiles && !last_under_heads) {
         store_.set_status(job->id, jobs::JobStatus::done);
         log_line(job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
                  std::to_string(job->spoiled) + " spoiled and reprinted, " +

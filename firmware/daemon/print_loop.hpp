@@ -70,6 +70,7 @@ class PrintLoop {
     void check_job_done();
     void adjust_speed();
     Clock::duration pitch_time() const;
+    Clock::duration under_heads() const;
     Clock::time_point deadline(size_t queued) const;
     void publish();
     void set_print_enable(bool on);
