@@ -85,6 +85,7 @@ class LinesimProcess {
     const drivers::DriversConfig& config() const { return *config_; }
     const std::string& config_path() const { return config_path_; }
     int port() const { return port_; }
+    const std::string& print_log_path() const { return print_log_; }
 
     // A control-socket request; throws if the simulator says it failed.
     nlohmann::json control(const std::string& request) const {

@@ -70,6 +70,7 @@ inline PrintLogResult check_print_log(const std::vector<nlohmann::json>& log, st
     const std::string job = "job-" + std::to_string(job_id);
     const int tiles = int(reference.size());
     std::map<int, int> count;
+    std::map<int, std::string> line_tiles;  // where each index was printed, for the message
     for (const nlohmann::json& entry : log) {
         if (entry.value("status", "") != "printed" || entry.value("job", "") != job) continue;
         const int k = entry.value("tile", -1);
@@ -82,10 +83,18 @@ inline PrintLogResult check_print_log(const std::vector<nlohmann::json>& log, st
             result.problems.push_back(job + " tile " + std::to_string(k) +
                                       ": separations differ from the offline render");
         ++count[k];
+        line_tiles[k].append(" ").append(entry.value("time", "")).append("@line_tile ");
+        line_tiles[k].append(std::to_string(entry.value("line_tile", -1)));
     }
+    std::string reprinted;
     for (int k = 0; k < tiles; ++k) {
         if (count[k] == 0)
             result.problems.push_back(job + " tile " + std::to_string(k) + " never printed");
+        if (count[k] > 1) {
+            reprinted.append("\n  tile ").append(std::to_string(k));
+            reprinted.append(" printed ").append(std::to_string(count[k])).append(" times:");
+            reprinted.append(line_tiles[k]);
+        }
         result.reprints += std::max(0, count[k] - 1);
     }
     result.indices_printed =
@@ -93,7 +102,7 @@ inline PrintLogResult check_print_log(const std::vector<nlohmann::json>& log, st
     if (result.reprints != spoiled)
         result.problems.push_back(job + ": " + std::to_string(result.reprints) +
                                   " tile(s) printed more than once, the daemon spoiled " +
-                                  std::to_string(spoiled));
+                                  std::to_string(spoiled) + reprinted);
     return result;
 }
 
