@@ -480,8 +480,11 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
     const std::int64_t seq = ++seq_;
     store_.mark_sending(entry.job, entry.index, seq);
     try {
-        heads_->send({"job-" + std::to_string(entry.job),
-                      std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
+        // A blank probe is no tile of the job: it goes out under its own name, numbered by
+        // its sequence, so the heads' log never shows it as a second print of tile 0.
+        const bool blank = entry.index < 0;
+        heads_->send({blank ? std::string("blank") : "job-" + std::to_string(entry.job),
+                      std::uint64_t(blank ? -entry.index : entry.index), tile.bytes},
                      print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
         store_.unmark_sending(entry.job, entry.index);
