@@ -472,6 +472,7 @@ bool PrintLoop::send_next(bool deadline_applies) {
     if (!tile) return false;
     const HeadEntry entry{job_->id, next.front(), true};
     const auto result = send(entry, *tile, deadline_applies);
+    render_.recycle(std::move(*tile));  // sent or not, its pages serve the next render
     return result == SendResult::sent;
 }
 
