@@ -6,18 +6,35 @@
 
 namespace tilejet::drivers::sim {
 
+namespace {
+
+// The number after `verb` in a reply such as "QUEUED 2".
+int count_in(const std::string& reply, std::string_view verb) {
+    const std::string count = reply.substr(verb.size());
+    if (count.empty() || count.size() > 6 ||
+        count.find_first_not_of("0123456789") != std::string::npos)
+        throw std::runtime_error("sim heads: malformed reply '" + reply.substr(0, 100) + "'");
+    return std::stoi(count);
+}
+
+}  // namespace
+
 SimHeadSink::SimHeadSink(std::string socket_path) : path_(std::move(socket_path)) {}
 
 SimHeadSink::~SimHeadSink() = default;
 
-void SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds timeout) {
-    if (tile.job_id.empty() || tile.job_id.find_first_of(" \t\r\n") != std::string::npos)
-        throw std::invalid_argument("sim heads: job id '" + tile.job_id +
-                                    "' must be non-empty and without whitespace");
-    // Connected lazily and again after an error, so a restarted simulator is picked up.
+void SimHeadSink::connect(std::chrono::milliseconds timeout) {
+    // Lazily, and again after an error, so a restarted simulator is picked up.
     if (!socket_)
         socket_ =
             std::make_unique<UnixSocket>(UnixSocket::connect(path_, "sim heads " + path_, timeout));
+}
+
+int SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds timeout) {
+    if (tile.job_id.empty() || tile.job_id.find_first_of(" \t\r\n") != std::string::npos)
+        throw std::invalid_argument("sim heads: job id '" + tile.job_id +
+                                    "' must be non-empty and without whitespace");
+    connect(timeout);
     try {
         const std::string header = "TILE " + tile.job_id + " " + std::to_string(tile.tile_index) +
                                    " " + std::to_string(tile.bytes.size()) + "\n";
@@ -29,7 +46,7 @@ void SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds ti
             throw std::runtime_error("sim heads: no answer for tile " +
                                      std::to_string(tile.tile_index) + " within " +
                                      std::to_string(timeout.count()) + " ms");
-        if (reply->starts_with("QUEUED")) return;
+        if (reply->starts_with("QUEUED ")) return count_in(*reply, "QUEUED ");
         if (*reply == "FULL")
             throw HeadsBusy("sim heads: buffer full, tile " + std::to_string(tile.tile_index) +
                             " not queued");
@@ -39,6 +56,21 @@ void SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds ti
         throw;
     } catch (...) {
         socket_.reset();  // the stream may be mid-tile: start clean next time
+        throw;
+    }
+}
+
+int SimHeadSink::held(std::chrono::milliseconds timeout) {
+    connect(timeout);
+    try {
+        socket_->send_all("HELD?\n", timeout);
+        auto reply = socket_->read_line(timeout);
+        if (!reply || !reply->starts_with("HELD "))
+            throw std::runtime_error("sim heads: no answer to HELD? within " +
+                                     std::to_string(timeout.count()) + " ms");
+        return count_in(*reply, "HELD ");
+    } catch (...) {
+        socket_.reset();
         throw;
     }
 }

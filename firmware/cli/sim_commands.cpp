@@ -46,6 +46,7 @@ void add_sim_commands(CLI::App& app) {
     add(sim, "delay", "answer every Modbus request MS late (0: on time)", "MS", "milliseconds");
     add(sim, "glitch", "a short spurious pulse on the photo-eye", "US",
         "pulse width in microseconds (default 300)", false);
+    add(sim, "heads-reset", "the print heads restart and lose the tiles they hold");
     add(sim, "stop-conveyor", "stop the conveyor from the line side");
     add(sim, "start-conveyor", "start the conveyor from the line side");
     add(sim, "status", "print the simulator's state as JSON");

@@ -134,8 +134,12 @@ PrintConfig parse_print(const toml::table* t, const ConfigSource& src,
                         const drivers::DriversConfig& d) {
     ConfigSection s(t, src, "print");
     PrintConfig c;
-    c.speed_mm_s = int(s.get_int("speed_mm_s", c.speed_mm_s, 1, 2000));
-    c.min_speed_mm_s = int(s.get_int("min_speed_mm_s", c.min_speed_mm_s, 1, 2000));
+    // The PLC's own limit, from the register map, bounds the speeds the daemon may ask for.
+    const drivers::Register* setpoint = d.registers.find("speed_setpoint");
+    const std::int64_t fastest = setpoint ? setpoint->max : 0xffff;
+    c.speed_mm_s =
+        int(s.get_int("speed_mm_s", std::min<std::int64_t>(c.speed_mm_s, fastest), 1, fastest));
+    c.min_speed_mm_s = int(s.get_int("min_speed_mm_s", c.min_speed_mm_s, 1, fastest));
     c.poll = std::chrono::milliseconds(s.get_int("poll_ms", 5, 1, 1000));
     c.send_timeout = std::chrono::milliseconds(s.get_int("send_timeout_ms", 1000, 10, 60000));
     c.send_margin = std::chrono::milliseconds(s.get_int("send_margin_ms", 20, 0, 10000));

@@ -87,7 +87,12 @@ void PrintLoop::turn() {
         std::lock_guard lock(reload_mutex_);
         if (reload_) {
             print_ = *std::exchange(reload_, std::nullopt);
-            speed_ = std::min(speed_, print_.speed_mm_s);
+            // A lower top speed applies to a running conveyor at once; a higher one is reached
+            // step by step while render-ahead keeps up (print_turn).
+            if (speed_ > print_.speed_mm_s) {
+                speed_ = print_.speed_mm_s;
+                if (run_commanded_) line_->set_speed(std::uint16_t(speed_));
+            }
             log_line("reloaded [print]: speed " + std::to_string(print_.speed_mm_s) + " mm/s");
         }
     }
@@ -249,14 +254,8 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
     }
     const Clock::time_point estop_at{std::chrono::duration_cast<Clock::duration>(at)};
     if (last_printed_ && state_.status() == LineStatus::printing) {
-        // A tile is under the heads from its leading edge until its trailing edge has passed:
-        // tile_length / speed. Printing it may have stopped half way: spoiled.
-        const double speed = std::max(
-            1.0,
-            std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
-        const auto under = std::chrono::duration_cast<Clock::duration>(
-            std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
-        if (estop_at - last_printed_->arrived_after < under) {
+        // Printing the tile under the heads may have stopped half way: spoiled.
+        if (estop_at - last_printed_->arrived_after < under_heads()) {
             const HeadEntry& e = last_printed_->entry;
             store_.mark_spoiled(e.job, e.index);
             ++spoiled_;
@@ -381,6 +380,7 @@ void PrintLoop::print_turn() {
         }
         while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ && send_next(false)) {
         }
+        if (!mirror_.empty() && !heads_hold_mirror()) return;  // the next turn fills them again
         if (!mirror_.empty())
             start_conveyor();
         else
@@ -437,6 +437,16 @@ void PrintLoop::start_conveyor() {
     state_.set(LineStatus::printing, job_->name());
 }
 
+PrintLoop::Clock::duration PrintLoop::under_heads() const {
+    // From its leading edge until its trailing edge has passed: tile_length / speed, at the
+    // slowest speed the line may be running.
+    const double speed = std::max(
+        1.0,
+        std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
+    return std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
+}
+
 PrintLoop::Clock::duration PrintLoop::pitch_time() const {
     // At the fastest speed the line may run, so that it is never longer than the real one.
     const double fastest = std::max<double>(
@@ -462,6 +472,7 @@ bool PrintLoop::send_next(bool deadline_applies) {
     if (!tile) return false;
     const HeadEntry entry{job_->id, next.front(), true};
     const auto result = send(entry, *tile, deadline_applies);
+    render_.recycle(std::move(*tile));  // sent or not, its pages serve the next render
     return result == SendResult::sent;
 }
 
@@ -470,8 +481,11 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
     const std::int64_t seq = ++seq_;
     store_.mark_sending(entry.job, entry.index, seq);
     try {
-        heads_->send({"job-" + std::to_string(entry.job),
-                      std::uint64_t(std::max<std::int64_t>(entry.index, 0)), tile.bytes},
+        // A blank probe is no tile of the job: it goes out under its own name, numbered by
+        // its sequence, so the heads' log never shows it as a second print of tile 0.
+        const bool blank = entry.index < 0;
+        heads_->send({blank ? std::string("blank") : "job-" + std::to_string(entry.job),
+                      std::uint64_t(blank ? -entry.index : entry.index), tile.bytes},
                      print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
         store_.unmark_sending(entry.job, entry.index);
@@ -490,7 +504,52 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
                  " too close to a tile's arrival: resync");
         mirror_certain_ = false;
     }
+    // The heads' count in the answer is not compared with the mirror: while the conveyor runs a
+    // tile may take the oldest separations during the send (rule 2 only keeps a send ahead of
+    // the tile it is for). heads_hold_mirror asks before each start, when nothing can arrive.
     return SendResult::sent;
+}
+
+bool PrintLoop::heads_hold_mirror() {
+    // Asked before every start: heads that restarted while the conveyor stood (paused, e-stop,
+    // fault) and kept their buffer full would otherwise be taken as printing the lost tiles.
+    int held = 0;
+    try {
+        held = heads_->held(print_.send_timeout);
+    } catch (const std::exception& e) {
+        log_line("heads: " + std::string(e.what()));
+        return false;
+    }
+    return heads_agree(held);
+}
+
+bool PrintLoop::heads_agree(int held) {
+    if (held < int(mirror_.size())) {
+        on_heads_lost(mirror_.size() - size_t(held));
+        return false;
+    }
+    if (held > int(mirror_.size())) {
+        log_line("heads hold " + std::to_string(held) + " tiles, " +
+                 std::to_string(mirror_.size()) + " expected: resync");
+        mirror_certain_ = false;
+        return false;
+    }
+    return true;
+}
+
+void PrintLoop::on_heads_lost(std::size_t count) {
+    // The heads emptied their buffer (a restart): the oldest entries are gone unprinted. They
+    // are marked missed and go out again, same index, same bytes.
+    std::string lost;
+    for (std::size_t i = 0; i < count; ++i) {
+        const HeadEntry e = mirror_.front();
+        mirror_.pop_front();
+        if (!e.known || e.index < 0) continue;
+        store_.mark_missed(e.job, e.index);
+        lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
+    }
+    log_line("heads lost " + std::to_string(count) + " tile(s) before printing them" +
+             (lost.empty() ? std::string() : ": missed, printed again: " + lost));
 }
 
 bool PrintLoop::resync() {
@@ -585,7 +644,10 @@ void PrintLoop::check_job_done() {
     }
     if (cancelled) stop_job_ = true;
     job_ = job;
-    if (job->printed >= job->spec.tiles) {
+    // Done once the last tile is clear of the heads: an e-stop before that spoils it.
+    const bool last_under_heads = last_printed_ && last_printed_->entry.job == job->id &&
+                                  Clock::now() - last_printed_->arrived_after < under_heads();
+    if (job->printed >= job->spec.tiles && !last_under_heads) {
         store_.set_status(job->id, jobs::JobStatus::done);
         log_line(job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
                  std::to_string(job->spoiled) + " spoiled and reprinted, " +
@@ -605,6 +667,8 @@ void PrintLoop::publish() {
     s.estop_latched = gpio_->estop_latched();
     s.conveyor_running = line_state_.running;
     s.speed_setpoint_mm_s = line_state_.speed_setpoint_mm_s;
+    s.speed_mm_s = line_state_.speed_mm_s;
+    s.plc_fault_code = line_state_.fault_code;
     s.tile_counter = line_state_.tile_counter;
     s.heads_queue = int(mirror_.size());
     s.rendered_ahead = render_.ready();

@@ -54,6 +54,9 @@ class PrintLoop {
     void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
     void on_estop(std::chrono::nanoseconds at);
     void on_link_lost(const std::string& why);
+    void on_heads_lost(std::size_t count);
+    bool heads_hold_mirror();
+    bool heads_agree(int held);
     void select_job();
     void print_turn();
     void park(const std::string& reason, LineStatus status);
@@ -67,6 +70,7 @@ class PrintLoop {
     void check_job_done();
     void adjust_speed();
     Clock::duration pitch_time() const;
+    Clock::duration under_heads() const;
     Clock::time_point deadline(size_t queued) const;
     void publish();
     void set_print_enable(bool on);

@@ -60,6 +60,11 @@ int RenderAhead::ready() const {
     return n;
 }
 
+void RenderAhead::recycle(Separations&& tile) {
+    std::lock_guard lock(mutex_);
+    if (int(spare_.size()) < capacity_) spare_.push_back(std::move(tile.bytes));
+}
+
 std::optional<std::string> RenderAhead::take_error() {
     std::lock_guard lock(mutex_);
     return std::exchange(error_, std::nullopt);
@@ -86,11 +91,16 @@ void RenderAhead::work() {
         if (!found) continue;
         slots_[key].working = true;
         const auto renderer = renderer_;
+        std::vector<std::uint8_t> buffer;
+        if (!spare_.empty()) {
+            buffer = std::move(spare_.back());
+            spare_.pop_back();
+        }
         lock.unlock();
         std::optional<Separations> tile;
         std::string error;
         try {
-            tile = renderer->render(key.second, 1);
+            tile = renderer->render(key.second, 1, std::move(buffer));
         } catch (const std::exception& e) {
             error = "tile " + std::to_string(key.second) + ": " + e.what();
         }

@@ -33,6 +33,8 @@ class RenderAhead {
     // How many of the wanted tiles are ready.
     int ready() const;
     int capacity() const { return capacity_; }
+    // A sent tile's bytes, kept to render a later tile into (at most `capacity` are kept).
+    void recycle(Separations&& tile);
     // The last render failure, cleared by reading it.
     std::optional<std::string> take_error();
 
@@ -52,6 +54,7 @@ class RenderAhead {
     std::vector<Key> wanted_;
     std::map<Key, Slot> slots_;
     std::optional<std::string> error_;
+    std::vector<std::vector<std::uint8_t>> spare_;
     std::vector<std::jthread> workers_;
 };
 

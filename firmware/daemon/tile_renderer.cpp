@@ -35,9 +35,10 @@ TileRenderer::TileRenderer(const jobs::Job& job, const colour::ColourSettings& c
     cmyk_map_ = colour::convert_map(map, *transform_);
 }
 
-Separations TileRenderer::render(std::int64_t index, int threads) const {
+Separations TileRenderer::render(std::int64_t index, int threads,
+                                 std::vector<std::uint8_t> buffer) const {
     const synth::Region region = synth::tile_region(seed_, std::uint64_t(index), geometry_);
-    Separations s{job_, index, region.width, region.height, {}};
+    Separations s{job_, index, region.width, region.height, std::move(buffer)};
     s.bytes.resize(size_t(region.width) * size_t(region.height) * 4);
     synth::render_region(*cmyk_map_, seed_, region, s.bytes.data(), size_t(region.width) * 4,
                          threads);

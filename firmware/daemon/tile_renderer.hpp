@@ -26,7 +26,10 @@ class TileRenderer {
     TileRenderer(const jobs::Job& job, const colour::ColourSettings& colour,
                  std::filesystem::path previews = {}, int preview_tiles = 0);
 
-    Separations render(std::int64_t index, int threads = 1) const;
+    // `buffer`: a tile's bytes that are no longer needed, reused so that a 300 MB tile costs
+    // no fresh pages (the kernel zeroes every new page: more time than the render itself).
+    Separations render(std::int64_t index, int threads = 1,
+                       std::vector<std::uint8_t> buffer = {}) const;
     // An sRGB soft proof of a tile, for previews.
     void write_preview(const Separations& tile, const std::filesystem::path& png) const;
 

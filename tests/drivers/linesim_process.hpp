@@ -50,6 +50,7 @@ struct LinesimOptions {
     int head_buffer_tiles = 2;
     int response_timeout_ms = 200;
     int debounce_us = 2000;
+    std::string register_map = TILEJET_SOURCE_DIR "/config/registers.toml";
 };
 
 class LinesimProcess {
@@ -85,6 +86,7 @@ class LinesimProcess {
     const drivers::DriversConfig& config() const { return *config_; }
     const std::string& config_path() const { return config_path_; }
     int port() const { return port_; }
+    const std::string& print_log_path() const { return print_log_; }
 
     // A control-socket request; throws if the simulator says it failed.
     nlohmann::json control(const std::string& request) const {
@@ -112,7 +114,7 @@ class LinesimProcess {
           << "tile_pitch_mm = " << o.tile_pitch_mm << "\n"
           << "photo_eye_mm = " << o.photo_eye_mm << "\n"
           << "heads_mm = " << o.heads_mm << "\n"
-          << "register_map = \"" << TILEJET_SOURCE_DIR << "/config/registers.toml\"\n"
+          << "register_map = \"" << o.register_map << "\"\n"
           << "[modbus]\nhost = \"127.0.0.1\"\nport = " << port << "\n"
           << "response_timeout_ms = " << o.response_timeout_ms << "\n"
           << "reconnect_min_ms = 20\nreconnect_max_ms = 200\n"

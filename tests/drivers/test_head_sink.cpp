@@ -41,8 +41,9 @@ TEST_CASE("separations queued in time are printed, in order, with their hash",
     auto gpio = drivers::make_gpio(sim.config());
     gpio->set(drivers::GpioOutput::print_enable, true);
     const auto a = separations(4 * 64 * 64, 1), b = separations(1 << 20, 2);
-    heads->send({"job-7", 0, a}, 1s);
-    heads->send({"job-7", 1, b}, 1s);
+    // Each answer says how many tiles the heads hold.
+    CHECK(heads->send({"job-7", 0, a}, 1s) == 1);
+    CHECK(heads->send({"job-7", 1, b}, 1s) == 2);
     // The buffer holds two tiles: a third is refused, not queued.
     const auto c = separations(10, 3);
     CHECK_THROWS_AS(heads->send({"job-7", 2, c}, 1s), drivers::HeadsBusy);
@@ -99,4 +100,16 @@ TEST_CASE("nothing prints while print-enable is low", "[drivers][heads][sim][fau
     const auto log = sim.print_log();
     CHECK(log[0]["status"] == "missed");
     CHECK(log[0]["reason"] == "print-enable low");
+}
+
+TEST_CASE("heads that restart lose their buffer, and the next answer shows it",
+          "[drivers][heads][sim]") {
+    test::LinesimProcess sim;
+    auto heads = drivers::make_head_sink(sim.config());
+    const auto bytes = separations(1000, 4);
+    CHECK(heads->send({"job-1", 0, bytes}, 1s) == 1);
+    CHECK(heads->send({"job-1", 1, bytes}, 1s) == 2);
+    sim.control("heads-reset");
+    CHECK(sim.status()["head_buffer"] == 0);
+    CHECK(heads->send({"job-1", 2, bytes}, 1s) == 1);
 }

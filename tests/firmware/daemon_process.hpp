@@ -183,6 +183,10 @@ class DaemonProcess {
     }
 
     int port() const { return port_; }
+    pid_t pid() const { return pid_; }
+    const std::string& config_path() const { return config_path_; }
+    // A signal without waiting for the daemon to exit (SIGHUP).
+    void signal(int sig) const { kill(pid_, sig); }
 
   private:
     std::string config_path_, log_path_;

@@ -1,17 +1,11 @@
 // tilejetd against tilejet-linesim, both as separate processes on loopback: a job prints every
 // tile exactly once with the bytes an offline render gives, through SIGKILL and restart, an
 // e-stop and a Modbus link drop.
-#include <openssl/evp.h>
-
 #include <catch2/catch.hpp>
-#include <map>
 #include <random>
 
 #include "daemon_process.hpp"
-#include "tilejet/colour/cmyk_map.hpp"
-#include "tilejet/synth/map_file.hpp"
-#include "tilejet/synth/sampler.hpp"
-#include "tilejet/synth/tile_region.hpp"
+#include "print_log_check.hpp"
 
 using namespace tilejet;
 using namespace std::chrono_literals;
@@ -25,36 +19,13 @@ std::string job_body(int tiles) {
            R"(,"tile_mm":"200x200","dpi":20})";
 }
 
-std::string sha256_hex(const std::uint8_t* data, size_t size) {
-    unsigned char digest[EVP_MAX_MD_SIZE];
-    unsigned int length = 0;
-    EVP_Digest(data, size, digest, &length, EVP_sha256(), nullptr);
-    std::string out;
-    static const char* hex = "0123456789abcdef";
-    for (unsigned i = 0; i < length; ++i) {
-        out += hex[digest[i] >> 4];
-        out += hex[digest[i] & 15];
-    }
-    return out;
-}
-
-// The separations' SHA-256 per tile, rendered here through synth and colour directly (not
-// through the daemon's code).
-const std::vector<std::string>& reference_hashes(int tiles) {
-    static std::vector<std::string> hashes;
-    if (int(hashes.size()) >= tiles) return hashes;
-    const synth::TextureMap map = synth::load_texture_map(TILEJET_TEST_MAP);
-    colour::ColourSettings settings;
-    settings.output_profile = TILEJET_TEST_CMYK_PROFILE;
-    const colour::CmykTransform transform(settings);
-    const auto cmyk = colour::convert_map(map, transform);
-    hashes.clear();
-    for (int k = 0; k < tiles; ++k) {
-        const auto region = synth::tile_region(4242, std::uint64_t(k), {kSide, kSide});
-        const cv::Mat tile = synth::render_region(*cmyk, 4242, region, 1);
-        REQUIRE(tile.isContinuous());
-        hashes.push_back(sha256_hex(tile.data, tile.total() * tile.elemSize()));
-    }
+// The separations' SHA-256 per tile, rendered offline.
+std::vector<std::string> reference_hashes(int tiles) {
+    static const test::ReferenceRenderer renderer(TILEJET_TEST_MAP, TILEJET_TEST_CMYK_PROFILE,
+                                                  kSide);
+    std::vector<std::string> hashes;
+    for (int k = 0; k < tiles; ++k)
+        hashes.push_back(renderer.hash(4242, std::uint64_t(k)));
     return hashes;
 }
 
@@ -78,29 +49,13 @@ json wait_done(const test::DaemonProcess& d, std::int64_t id, std::chrono::secon
     return job;
 }
 
-// Every index printed, each with the reference bytes; a tile is printed more than once only
-// when the daemon spoiled it (e-stop under the heads), and then with the same bytes.
 void check_print_log(const test::LinesimProcess& line, std::int64_t id, int tiles,
                      std::int64_t spoiled) {
-    const auto& reference = reference_hashes(tiles);
-    std::map<int, int> count;
-    for (const json& entry : line.print_log()) {
-        if (entry["status"] != "printed" || entry["job"] != "job-" + std::to_string(id)) continue;
-        const int k = entry["tile"].get<int>();
-        REQUIRE(k >= 0);
-        REQUIRE(k < tiles);
-        INFO("tile " << k);
-        CHECK(entry["sha256"] == reference[size_t(k)]);
-        ++count[k];
-    }
-    int extra = 0;
-    for (int k = 0; k < tiles; ++k) {
-        INFO("tile " << k);
-        CHECK(count[k] >= 1);
-        extra += std::max(0, count[k] - 1);
-    }
-    CHECK(int(count.size()) == tiles);
-    CHECK(extra == spoiled);
+    const auto result =
+        test::check_print_log(line.print_log(), id, reference_hashes(tiles), spoiled);
+    for (const std::string& problem : result.problems)
+        FAIL_CHECK(problem);
+    CHECK(result.indices_printed == tiles);
 }
 
 test::LinesimOptions line_options() {
@@ -241,4 +196,80 @@ TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state sa
         },
         20s));
     CHECK(daemon.log().find("conveyor slowed") != std::string::npos);
+}
+
+TEST_CASE("SIGHUP reloads the print speed; a broken config is refused and the old one kept",
+          "[daemon][line][reload]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const std::string original = [&] {
+        std::ifstream in(daemon.config_path());
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }();
+    // [sim] has a speed_mm_s too: change the one in [print].
+    const auto print_at = original.find("[print]");
+    REQUIRE(print_at != std::string::npos);
+    const auto rewrite = [&](const std::string& from, const std::string& to) {
+        std::string text = original;
+        const auto at = text.find(from, print_at);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+        std::ofstream(daemon.config_path()) << text;
+    };
+
+    const int tiles = 60;
+    const auto id = submit(daemon, tiles);
+    REQUIRE(test::eventually(
+        [&] {
+            return daemon.job(id)["printed"].get<int>() >= 3 &&
+                   line.status()["speed_setpoint"] == 1000;
+        },
+        10s));
+    rewrite("speed_mm_s = 1000", "speed_mm_s = 600");
+    daemon.signal(SIGHUP);
+    // The running conveyor slows at once.
+    CHECK(test::eventually([&] { return line.status()["speed_setpoint"] == 600; }, 3s));
+    CHECK(daemon.log().find("reloaded [print]: speed 600 mm/s") != std::string::npos);
+
+    // A config with a mistake is refused as a whole, naming the key, and printing goes on.
+    rewrite("speed_mm_s = 1000", "speed_mm_s = 600\nsped_mm_s = 900");
+    daemon.signal(SIGHUP);
+    CHECK(test::eventually(
+        [&] {
+            const std::string log = daemon.log();
+            return log.find("config not reloaded") != std::string::npos &&
+                   log.find("sped_mm_s") != std::string::npos;
+        },
+        3s));
+    wait_done(daemon, id, 60s);
+    CHECK(line.status()["speed_setpoint"] == 600);
+    check_print_log(line, id, tiles, 0);
+}
+
+TEST_CASE("tiles the heads lose before printing are marked missed and printed again",
+          "[daemon][line][heads]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 30;
+    const auto id = submit(daemon, tiles);
+    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    // Paused, the conveyor stands with tiles in the heads; then the head controller restarts.
+    daemon.request("POST", "/api/line/pause", "");
+    REQUIRE(test::eventually(
+        [&] {
+            const json s = line.status();
+            return s["running"] == false && s["head_buffer"].get<int>() > 0;
+        },
+        5s));
+    const int held = line.status()["head_buffer"].get<int>();
+    line.control("heads-reset");
+    daemon.request("POST", "/api/line/resume", "");
+    const json job = wait_done(daemon, id, 30s);
+    CHECK(job["missed"] == held);
+    CHECK(daemon.log().find("heads lost") != std::string::npos);
+    check_print_log(line, id, tiles, 0);
 }

@@ -150,6 +150,8 @@ std::string LineSimulator::control(const std::string& request, ns now) {
             const long us = arg.empty() ? 300 : std::stol(arg);
             if (us <= 0 || us > 1000000) return error("glitch width takes 1..1000000 us");
             gpio_->glitch(GpioInput::photo_eye, now, std::chrono::microseconds(us));
+        } else if (verb == "heads-reset") {
+            heads_->reset_buffer();
         } else if (verb == "stop-conveyor") {
             stop_conveyor();
         } else if (verb == "start-conveyor") {

@@ -103,6 +103,10 @@ bool PrintHeads::serve(Client& c, ns now) {
         if (!c.in_tile) {
             std::string line;
             if (!c.peer.next_line(line)) return c.peer.in.size() < 4096;
+            if (line == "HELD?") {
+                c.peer.send("HELD " + std::to_string(buffer_.size()) + "\n");
+                continue;
+            }
             std::istringstream in(line);
             std::string verb;
             long long bytes = -1;

@@ -28,6 +28,8 @@ class PrintHeads {
     void tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready);
 
     size_t buffered() const { return buffer_.size(); }
+    // A head controller that restarted: every buffered tile is gone.
+    void reset_buffer() { buffer_.clear(); }
     std::uint64_t printed() const { return printed_; }
     std::uint64_t missed() const { return missed_; }
 

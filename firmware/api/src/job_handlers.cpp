@@ -21,6 +21,7 @@ nlohmann::json job_json(const jobs::Job& job) {
             {"wall_width", job.spec.wall_width},
             {"printed", job.printed},
             {"spoiled", job.spoiled},
+            {"missed", job.missed},
             {"missed_line_tiles", job.missed_line_tiles},
             {"created", job.created},
             {"started", job.started},

@@ -34,6 +34,7 @@ CREATE TABLE IF NOT EXISTS tiles (
     seq INTEGER NOT NULL DEFAULT 0,
     line_tile INTEGER,
     spoiled INTEGER NOT NULL DEFAULT 0,
+    missed INTEGER NOT NULL DEFAULT 0,
     PRIMARY KEY (job, idx)
 );
 CREATE INDEX IF NOT EXISTS tiles_by_state ON tiles(state, seq);
@@ -43,12 +44,19 @@ constexpr std::string_view kJobColumns =
     "SELECT id, map, profile, seed, tiles, tile_width_mm, tile_height_mm, dpi, layout, "
     "wall_width, status, message, next_index, missed_line_tiles, created, started, finished, "
     "(SELECT count(*) FROM tiles t WHERE t.job = jobs.id AND t.state = 'printed' AND t.idx >= 0), "
-    "(SELECT coalesce(sum(spoiled), 0) FROM tiles t WHERE t.job = jobs.id) FROM jobs ";
+    "(SELECT coalesce(sum(spoiled), 0) FROM tiles t WHERE t.job = jobs.id), "
+    "(SELECT coalesce(sum(missed), 0) FROM tiles t WHERE t.job = jobs.id) FROM jobs ";
 
 }  // namespace
 
 JobStore::JobStore(const std::string& path) : db_(path) {
     db_.exec(kSchema);
+    // Stores made before tiles.missed existed get the column (CREATE TABLE IF NOT EXISTS
+    // leaves an old table as it was).
+    bool has_missed = false;
+    for (auto s = db_.prepare("SELECT name FROM pragma_table_info('tiles')"); s.step();)
+        has_missed |= s.text(0) == "missed";
+    if (!has_missed) db_.exec("ALTER TABLE tiles ADD COLUMN missed INTEGER NOT NULL DEFAULT 0");
 }
 
 Job JobStore::read_job(Statement& s) {
@@ -72,6 +80,7 @@ Job JobStore::read_job(Statement& s) {
     j.finished = s.text(16);
     j.printed = s.integer(17);
     j.spoiled = s.integer(18);
+    j.missed = s.integer(19);
     return j;
 }
 
@@ -179,10 +188,12 @@ void JobStore::mark_sent(std::int64_t job, std::int64_t index) {
 }
 
 void JobStore::unmark_sending(std::int64_t job, std::int64_t index) {
-    // A tile that was spoiled before keeps its count and is sent again; a fresh one goes back
-    // to pending (no row), and next_index back to it when it was the newest.
+    // A tile that was spoiled or missed before keeps its state and is sent again; a fresh one
+    // goes back to pending (no row), and next_index back to it when it was the newest.
     Transaction t(db_);
-    db_.prepare("UPDATE tiles SET state = 'spoiled' WHERE job = ? AND idx = ? AND spoiled > 0")
+    db_.prepare(
+           "UPDATE tiles SET state = CASE WHEN spoiled > 0 THEN 'spoiled' ELSE 'missed' END "
+           "WHERE job = ? AND idx = ? AND state = 'sending' AND (spoiled > 0 OR missed > 0)")
         .bind(1, job)
         .bind(2, index)
         .run();
@@ -212,6 +223,13 @@ void JobStore::mark_printed(std::int64_t job, std::int64_t index, std::int64_t l
 void JobStore::mark_spoiled(std::int64_t job, std::int64_t index) {
     db_.prepare(
            "UPDATE tiles SET state = 'spoiled', spoiled = spoiled + 1 WHERE job = ? AND idx = ?")
+        .bind(1, job)
+        .bind(2, index)
+        .run();
+}
+
+void JobStore::mark_missed(std::int64_t job, std::int64_t index) {
+    db_.prepare("UPDATE tiles SET state = 'missed', missed = missed + 1 WHERE job = ? AND idx = ?")
         .bind(1, job)
         .bind(2, index)
         .run();

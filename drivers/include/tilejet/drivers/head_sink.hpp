@@ -31,8 +31,12 @@ class HeadSink {
     // when its separations were queued before its leading edge arrived; a tile that arrives
     // with nothing queued passes unprinted (logged "missed"), and separations are never
     // printed onto a tile already under the heads. Throws HeadsBusy when the buffer is full,
-    // std::runtime_error when the heads cannot be reached within `timeout`.
-    virtual void send(const TileSeparations& tile, std::chrono::milliseconds timeout) = 0;
+    // std::runtime_error when the heads cannot be reached within `timeout`. Returns how many
+    // tiles the heads hold now, this one included: fewer than the caller sent and saw no tile
+    // take means the heads lost their buffer (a head controller that restarted).
+    virtual int send(const TileSeparations& tile, std::chrono::milliseconds timeout) = 0;
+    // How many tiles the heads hold now; std::runtime_error when they cannot be asked.
+    virtual int held(std::chrono::milliseconds timeout) = 0;
 };
 
 }  // namespace tilejet::drivers

@@ -32,6 +32,7 @@ struct Job {
     std::int64_t next_index = 0;             // the first tile index never sent to the heads
     std::int64_t printed = 0;                // tiles confirmed printed (each index counts once)
     std::int64_t spoiled = 0;                // times a tile was spoiled (e-stop under the heads)
+    std::int64_t missed = 0;                 // times the heads lost a sent tile unprinted
     std::int64_t missed_line_tiles = 0;      // tiles of the line that passed the heads unprinted
     std::string created, started, finished;  // ISO 8601 UTC, empty until it happens
 

@@ -34,6 +34,8 @@ class JobStore {
     void unmark_sending(std::int64_t job, std::int64_t index);
     void mark_printed(std::int64_t job, std::int64_t index, std::int64_t line_tile);
     void mark_spoiled(std::int64_t job, std::int64_t index);
+    // It was sent, but the heads lost it before it was printed: it goes out again.
+    void mark_missed(std::int64_t job, std::int64_t index);
     void add_missed_line_tiles(std::int64_t job, std::int64_t count);
     std::optional<TileState> tile_state(std::int64_t job, std::int64_t index);
     // The `limit` highest tile indices of `job` confirmed printed, ascending (the panel's wall).
