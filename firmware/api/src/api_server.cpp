@@ -56,10 +56,11 @@ ApiServer::ApiServer(ApiBackend& backend, const std::string& host, int port,
     });
     server_->set_error_handler([](const httplib::Request&, httplib::Response& res) {
         if (!res.body.empty()) return;
-        const std::string what = res.status == 413   ? "body: too large"
-                                 : res.status == 404 ? "no such resource"
-                                                     : "request refused";
-        reply_error(res, res.status, res.status == 413 ? "body" : "", what);
+        // An oversize body is a bad request like any other bad field (400, naming it), not
+        // cpp-httplib's 413: clients handle one kind of refusal.
+        if (res.status == 413) return reply_error(res, 400, "body", "body: too large");
+        reply_error(res, res.status, "",
+                    res.status == 404 ? "no such resource" : "request refused");
     });
     server_->set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
         return gate_->check(req, res);

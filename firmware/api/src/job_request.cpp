@@ -53,7 +53,7 @@ std::pair<double, double> parse_tile_mm(std::string_view text, const std::string
 }
 
 jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
-    if (body.size() > kMaxBodyBytes) throw ApiError(413, "body", "body: too large");
+    if (body.size() > kMaxBodyBytes) throw ApiError(400, "body", "body: too large");
     json j;
     try {
         j = json::parse(body);

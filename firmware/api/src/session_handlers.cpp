@@ -23,7 +23,7 @@ std::string cookie_header(const std::string& value, std::chrono::seconds max_age
 
 void add_session_routes(httplib::Server& server, Gate& gate) {
     server.Post("/api/session", [&gate](const httplib::Request& req, httplib::Response& res) {
-        if (req.body.size() > kMaxBodyBytes) throw ApiError(413, "body", "body: too large");
+        if (req.body.size() > kMaxBodyBytes) throw ApiError(400, "body", "body: too large");
         const Session s = gate.sign_in(req);
         res.set_header("Set-Cookie", cookie_header(s.id, gate.session_lifetime()));
         reply_json(res, 200, session_json(s));
