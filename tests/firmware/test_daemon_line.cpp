@@ -36,6 +36,13 @@ std::int64_t submit(const test::DaemonProcess& d, int tiles) {
     return body.at("id").get<std::int64_t>();
 }
 
+// Submits a job and waits until the line is well into it (8 tiles printed).
+std::int64_t submit_until_printing(const test::DaemonProcess& d, int tiles) {
+    const auto id = submit(d, tiles);
+    REQUIRE(test::eventually([&] { return d.job(id)["printed"].get<int>() >= 8; }, 10s));
+    return id;
+}
+
 json wait_done(const test::DaemonProcess& d, std::int64_t id, std::chrono::seconds timeout) {
     json job;
     test::eventually(
@@ -131,8 +138,7 @@ TEST_CASE(
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
     const int tiles = 30;
-    const auto id = submit(daemon, tiles);
-    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    const auto id = submit_until_printing(daemon, tiles);
     line.control("estop on");
     REQUIRE(test::eventually(
         [&] { return daemon.request("GET", "/api/status").second["state"] == "e-stop"; }, 2s));
@@ -154,8 +160,7 @@ TEST_CASE("a Modbus link drop mid-run ends with every tile printed exactly once"
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
     const int tiles = 30;
-    const auto id = submit(daemon, tiles);
-    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    const auto id = submit_until_printing(daemon, tiles);
     line.control("drop-link 1.0");
     REQUIRE(test::eventually(
         [&] { return daemon.request("GET", "/api/status").second["link_up"] == false; }, 3s));
@@ -255,8 +260,7 @@ TEST_CASE("tiles the heads lose before printing are marked missed and printed ag
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
     const int tiles = 30;
-    const auto id = submit(daemon, tiles);
-    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 8; }, 10s));
+    const auto id = submit_until_printing(daemon, tiles);
     // Paused, the conveyor stands with tiles in the heads; then the head controller restarts.
     daemon.request("POST", "/api/line/pause", "");
     REQUIRE(test::eventually(

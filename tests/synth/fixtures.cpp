@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "tilejet/synth/build.hpp"
@@ -87,6 +88,14 @@ bool same_lattice(const synth::Lattice& found, Basis truth, double tol) {
     const double true_area = std::abs(truth.t1.x * truth.t2.y - truth.t1.y * truth.t2.x);
     return on_truth(found.v1) && on_truth(found.v2) &&
            std::abs(found.area() - true_area) < 0.1 * true_area;
+}
+
+cv::Vec3d mean_lab(const cv::Mat& rgb) {
+    cv::Mat unit, lab;
+    rgb.convertTo(unit, CV_32FC3, 1.0 / 255);
+    cv::cvtColor(unit, lab, cv::COLOR_RGB2Lab);
+    const cv::Scalar m = cv::mean(lab);
+    return {m[0], m[1], m[2]};
 }
 
 }  // namespace tilejet::test

@@ -12,6 +12,9 @@ namespace tilejet::test {
 // The demo exemplar shipped in config/demo (R,G,B).
 const cv::Mat& demo_exemplar();
 
+// The mean CIELab colour of an 8-bit R,G,B image (OpenCV's D65 sRGB conversion).
+cv::Vec3d mean_lab(const cv::Mat& rgb);
+
 // A small map of the demo exemplar (64 px cells, 160 patches), built once per test run.
 const synth::TextureMap& small_map();
 

@@ -12,17 +12,7 @@ using namespace tilejet::synth;
 using tilejet::test::demo_exemplar;
 using tilejet::test::small_map;
 
-namespace {
-
-cv::Vec3d mean_lab(const cv::Mat& rgb) {
-    cv::Mat unit, lab;
-    rgb.convertTo(unit, CV_32FC3, 1.0 / 255);
-    cv::cvtColor(unit, lab, cv::COLOR_RGB2Lab);
-    const cv::Scalar m = cv::mean(lab);
-    return {m[0], m[1], m[2]};
-}
-
-}  // namespace
+using tilejet::test::mean_lab;
 
 TEST_CASE("a rendered region has the exemplar's mean CIELab colour", "[build]") {
     const cv::Vec3d ex = mean_lab(demo_exemplar());

@@ -14,6 +14,7 @@
 
 using namespace tilejet::synth;
 using tilejet::test::Basis;
+using tilejet::test::mean_lab;
 
 namespace {
 
@@ -28,14 +29,6 @@ const cv::Mat& brick_exemplar() {
 const cv::Mat& marble_exemplar() {
     static const cv::Mat m = tilejet::test::demo_exemplar()(cv::Rect(40, 60, 128, 128)).clone();
     return m;
-}
-
-cv::Vec3d mean_lab(const cv::Mat& rgb) {
-    cv::Mat unit, lab;
-    rgb.convertTo(unit, CV_32FC3, 1.0 / 255);
-    cv::cvtColor(unit, lab, cv::COLOR_RGB2Lab);
-    const cv::Scalar m = cv::mean(lab);
-    return {m[0], m[1], m[2]};
 }
 
 double delta_e76(const cv::Mat& a, const cv::Mat& b) {
