@@ -239,10 +239,11 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
     // e-stop were printed; catch up on them before judging which one was under the heads.
     try {
         const auto st = line_->read_state();
-        if (counter_known_ && st.tile_counter != counter_) {
-            on_arrivals(st.tile_counter - counter_, state_.status() == LineStatus::printing,
-                        prev_poll_start_);
-        }
+        // They had print-enable as the last poll saw it: the e-stop latch (on the GPIO thread)
+        // may already have changed the state, so the state cannot say (the soak found a
+        // printed tile taken for unprinted, then printed again).
+        if (counter_known_ && st.tile_counter != counter_)
+            on_arrivals(st.tile_counter - counter_, enabled_at_poll_, prev_poll_start_);
         counter_ = st.tile_counter;
         line_state_ = st;
         line_->stop();
@@ -253,7 +254,7 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         log_line("e-stop: PLC not reachable (" + std::string(e.what()) + "); resync after it");
     }
     const Clock::time_point estop_at{std::chrono::duration_cast<Clock::duration>(at)};
-    if (last_printed_ && state_.status() == LineStatus::printing) {
+    if (last_printed_) {
         // Printing the tile under the heads may have stopped half way: spoiled.
         if (estop_at - last_printed_->arrived_after < under_heads()) {
             const HeadEntry& e = last_printed_->entry;
