@@ -65,6 +65,7 @@ void PrintLoop::run() {
             mirror_certain_ = false;
             state_.set(LineStatus::faulted, e.what());
             publish();
+            if (draining_) break;  // stopping anyway: a broken line must not hold up SIGTERM
             std::this_thread::sleep_for(100ms);
         }
         controller_.heartbeat_ns =
@@ -98,14 +99,16 @@ void PrintLoop::turn() {
     }
     handle_commands();
     handle_gpio_events(print_.poll);
-    if (!poll_line()) {
-        publish();
-        return;
-    }
+    // Before the poll: with the PLC unreachable the poll fails every turn, and SIGTERM must
+    // still end the daemon (on_link_lost stops a drain).
     if (controller_.terminate && !draining_) {
         draining_ = true;
         drain_deadline_ = Clock::now() + print_.drain_timeout;
         log_line("SIGTERM: finishing the tiles in the heads, then stopping");
+    }
+    if (!poll_line()) {
+        publish();
+        return;
     }
     if (gpio_->estop_latched() || line_state_.estop) {
         if (line_state_.running) line_->stop();

@@ -277,3 +277,19 @@ TEST_CASE("tiles the heads lose before printing are marked missed and printed ag
     CHECK(daemon.log().find("heads lost") != std::string::npos);
     check_print_log(line, id, tiles, 0);
 }
+
+TEST_CASE("SIGTERM stops the daemon even when the PLC cannot be reached", "[daemon][line][term]") {
+    auto line = std::make_unique<test::LinesimProcess>(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(*line, dir.path());
+    REQUIRE(test::eventually(
+        [&] { return daemon.request("GET", "/api/status").second["link_up"] == true; }, 5s));
+    line.reset();  // the line simulator (PLC, GPIO chip, heads) is gone
+    INFO(daemon.log());
+    REQUIRE(test::eventually(
+        [&] { return daemon.request("GET", "/api/status").second["state"] == "faulted"; }, 5s));
+    const auto t0 = std::chrono::steady_clock::now();
+    daemon.stop(SIGTERM);  // SIGKILL after 10 s
+    CHECK(std::chrono::steady_clock::now() - t0 < 5s);
+    CHECK(daemon.log().find("stopped") != std::string::npos);
+}
