@@ -188,25 +188,20 @@ void JobStore::mark_sent(std::int64_t job, std::int64_t index) {
 }
 
 void JobStore::unmark_sending(std::int64_t job, std::int64_t index) {
-    // A tile that was spoiled or missed before keeps its state and is sent again; a fresh one
-    // goes back to pending (no row), and next_index back to it when it was the newest.
+    // A tile that was spoiled or missed before keeps that state and is sent again. A fresh one
+    // goes back to pending when it is the newest (next_index moves back to it); an older one,
+    // whose newer neighbours already went out (a resync sends probes before it learns that
+    // this tile never arrived), waits as missed, since next_index cannot reach it any more.
+    // A blank probe's row (index < 0) is simply dropped.
     Transaction t(db_);
-    db_.prepare(
-           "UPDATE tiles SET state = CASE WHEN spoiled > 0 THEN 'spoiled' ELSE 'missed' END "
-           "WHERE job = ? AND idx = ? AND state = 'sending' AND (spoiled > 0 OR missed > 0)")
-        .bind(1, job)
-        .bind(2, index)
-        .run();
-    db_.prepare("DELETE FROM tiles WHERE job = ? AND idx = ? AND state = 'sending'")
-        .bind(1, job)
-        .bind(2, index)
-        .run();
-    db_.prepare(
-           "UPDATE jobs SET next_index = ?2 WHERE id = ?1 AND next_index = ?2 + 1 AND NOT EXISTS "
-           "(SELECT 1 FROM tiles WHERE job = ?1 AND idx = ?2)")
-        .bind(1, job)
-        .bind(2, index)
-        .run();
+    const auto run = [&](const char* sql) { db_.prepare(sql).bind(1, job).bind(2, index).run(); };
+    run("UPDATE tiles SET state = CASE WHEN spoiled > 0 THEN 'spoiled' ELSE 'missed' END "
+        "WHERE job = ?1 AND idx = ?2 AND state = 'sending' AND (spoiled > 0 OR missed > 0)");
+    run("UPDATE jobs SET next_index = ?2 WHERE id = ?1 AND next_index = ?2 + 1 AND EXISTS "
+        "(SELECT 1 FROM tiles WHERE job = ?1 AND idx = ?2 AND state = 'sending')");
+    run("DELETE FROM tiles WHERE job = ?1 AND idx = ?2 AND state = 'sending' AND "
+        "(?2 < 0 OR ?2 = (SELECT next_index FROM jobs WHERE id = ?1))");
+    run("UPDATE tiles SET state = 'missed' WHERE job = ?1 AND idx = ?2 AND state = 'sending'");
     t.commit();
 }
 
