@@ -524,10 +524,6 @@ bool PrintLoop::heads_hold_mirror() {
         log_line("heads: " + std::string(e.what()));
         return false;
     }
-    return heads_agree(held);
-}
-
-bool PrintLoop::heads_agree(int held) {
     if (held < int(mirror_.size())) {
         on_heads_lost(mirror_.size() - size_t(held));
         return false;

@@ -56,7 +56,6 @@ class PrintLoop {
     void on_link_lost(const std::string& why);
     void on_heads_lost(std::size_t count);
     bool heads_hold_mirror();
-    bool heads_agree(int held);
     void select_job();
     void print_turn();
     void park(const std::string& reason, LineStatus status);
