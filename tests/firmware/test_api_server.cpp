@@ -271,6 +271,33 @@ TEST_CASE("malformed JSON, unknown fields, bad values and oversize bodies name t
     CHECK(backend.submitted == 0);
 }
 
+TEST_CASE("errors quoting bytes that are not UTF-8 are answered, not the end of the server",
+          "[api][validation]") {
+    // Found by fuzz_api_request: these messages quote what the client sent, and turning them
+    // into JSON threw from the exception handler, which ended the process.
+    FakeBackend backend;
+    api::ApiServer server(backend, "127.0.0.1", 0, access());
+    Client c(server.port());
+    const auto h = c.session("olga");
+    // The JSON parser's message quotes the ill-formed key ("last read: ...").
+    Answer a = c.send("POST", "/api/jobs",
+                      "{\"map\":\"/maps/a.tjmap\",\"seed\":7,\"tiles\":50,\"tile_mm\":\"300x300\","
+                      "\"dp\xe9\":100}",
+                      h);
+    CHECK(a.status == 400);
+    CHECK(a.body["field"] == "body");
+    // A viewer's reads quote the path and the query.
+    a = c.send("GET", "/api/jobs/%E9", "", c.session("vera"));
+    CHECK(a.status == 400);
+    CHECK(a.body["field"] == "id");
+    CHECK_THAT(a.body["error"].get<std::string>(), Catch::Contains("\xef\xbf\xbd"));  // U+FFFD
+    a = c.send("GET", "/api/wall.png?tiles=%E9", "", h);
+    CHECK(a.status == 400);
+    CHECK(a.body["field"] == "tiles");
+    CHECK(c.send("GET", "/api/status", "", h).status == 200);
+    CHECK(backend.submitted == 0);
+}
+
 namespace {
 
 // An /api/events reader on its own thread, collecting what arrives.

@@ -22,7 +22,11 @@ constexpr int kRequestThreads = 8;
 
 void reply_json(httplib::Response& res, int status, const nlohmann::json& body) {
     res.status = status;
-    res.set_content(body.dump() + "\n", "application/json");
+    // Error messages quote what the client sent (a path, a query value, the JSON parser's "last
+    // read"), which need not be UTF-8: replaced with U+FFFD rather than thrown from the
+    // exception handler, where it would end the daemon.
+    res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n",
+                    "application/json");
 }
 
 void reply_error(httplib::Response& res, int status, const std::string& field,
