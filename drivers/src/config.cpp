@@ -108,6 +108,7 @@ SimConfig parse_sim_section(const toml::table* table, const ConfigSource& source
     c.speed_mm_s = int(s.get_int("speed_mm_s", c.speed_mm_s, 0, 0xffff));
     c.start_running = s.get_bool("start_running", c.start_running);
     c.head_buffer_tiles = int(s.get_int("head_buffer_tiles", c.head_buffer_tiles, 1, 64));
+    c.head_checksums = s.get_bool("head_checksums", c.head_checksums);
     s.finish();
     return c;
 }

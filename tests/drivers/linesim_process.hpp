@@ -48,6 +48,7 @@ struct LinesimOptions {
     bool start_running = false;
     double tile_length_mm = 100, tile_pitch_mm = 200, photo_eye_mm = 50, heads_mm = 250;
     int head_buffer_tiles = 2;
+    bool head_checksums = true;
     int response_timeout_ms = 200;
     int debounce_us = 2000;
     std::string register_map = TILEJET_SOURCE_DIR "/config/registers.toml";
@@ -125,7 +126,8 @@ class LinesimProcess {
           << "control_socket = \"" << d << "/control.sock\"\n"
           << "speed_mm_s = " << int(o.speed_mm_s) << "\n"
           << "start_running = " << (o.start_running ? "true" : "false") << "\n"
-          << "head_buffer_tiles = " << o.head_buffer_tiles << "\n";
+          << "head_buffer_tiles = " << o.head_buffer_tiles << "\n"
+          << "head_checksums = " << (o.head_checksums ? "true" : "false") << "\n";
     }
 
     std::string read_ready_line(std::chrono::milliseconds timeout) {

@@ -33,6 +33,7 @@ TEST_CASE("the shipped config loads with the values it states", "[drivers][confi
     CHECK(c.gpio.backend == "sim");
     CHECK(c.gpio.debounce == std::chrono::microseconds(2000));
     CHECK(c.sim.head_buffer_tiles == 2);
+    CHECK(c.sim.head_checksums);
     CHECK(c.registers.registers().size() == 8);
     CHECK(c.registers.at("tile_counter").words() == 2);
     CHECK(c.registers.at("speed_setpoint").retain);

@@ -1,6 +1,9 @@
 // The sim head sink: separations in, the print log out, missed tiles never printed late.
 
 #include <openssl/evp.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <thread>
@@ -112,4 +115,105 @@ TEST_CASE("heads that restart lose their buffer, and the next answer shows it",
     sim.control("heads-reset");
     CHECK(sim.status()["head_buffer"] == 0);
     CHECK(heads->send({"job-1", 2, bytes}, 1s) == 1);
+}
+
+namespace {
+
+// A raw client of the heads' socket, to send a tile in pieces the way a slow link would.
+class RawHeadsClient {
+  public:
+    explicit RawHeadsClient(const std::string& path) : fd_(::socket(AF_UNIX, SOCK_STREAM, 0)) {
+        sockaddr_un a{};
+        a.sun_family = AF_UNIX;
+        path.copy(a.sun_path, sizeof a.sun_path - 1);
+        REQUIRE(::connect(fd_, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0);
+    }
+    ~RawHeadsClient() { close(); }
+    void write(std::string_view bytes) {
+        while (!bytes.empty()) {
+            const ssize_t n = ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+            REQUIRE(n > 0);
+            bytes.remove_prefix(size_t(n));
+        }
+    }
+    std::string read_line() {
+        std::string line;
+        char c = 0;
+        while (::recv(fd_, &c, 1, 0) == 1 && c != '\n')
+            line += c;
+        return line;
+    }
+    void close() {
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = -1;
+    }
+
+  private:
+    int fd_;
+};
+
+std::string_view as_text(const std::vector<std::uint8_t>& bytes) {
+    return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+}  // namespace
+
+TEST_CASE(
+    "separations that come in pieces are hashed whole, and the next header may share a "
+    "piece",
+    "[drivers][heads][sim]") {
+    test::LinesimProcess sim;
+    RawHeadsClient client(sim.config().sim.head_socket);
+    // Larger than the heads' 1 MB read buffer, and an odd size so no piece lines up with it.
+    const auto a = separations((3 << 20) + 12345, 6), b = separations(777, 7);
+    const std::string header_a = "TILE job-p 0 " + std::to_string(a.size()) + "\n";
+    const std::string header_b = "TILE job-p 1 " + std::to_string(b.size()) + "\n";
+    client.write(header_a + std::string(as_text(a).substr(0, 100)));
+    std::this_thread::sleep_for(20ms);
+    client.write(as_text(a).substr(100, 2 << 20));
+    std::this_thread::sleep_for(20ms);
+    client.write(std::string(as_text(a).substr(100 + (2 << 20))) + header_b +
+                 std::string(as_text(b)));
+    CHECK(client.read_line() == "QUEUED 1");
+    CHECK(client.read_line() == "QUEUED 2");
+    auto gpio = drivers::make_gpio(sim.config());
+    gpio->set(drivers::GpioOutput::print_enable, true);
+    sim.control("start-conveyor");
+    REQUIRE(test::eventually([&] { return sim.print_log().size() >= 2; }, 2s));
+    sim.control("stop-conveyor");
+    const auto log = sim.print_log();
+    CHECK(log[0]["bytes"] == a.size());
+    CHECK(log[0]["sha256"] == sha256(a));
+    CHECK(log[1]["tile"] == 1);
+    CHECK(log[1]["sha256"] == sha256(b));
+}
+
+TEST_CASE("a client that closes mid-tile queues nothing", "[drivers][heads][sim][fault]") {
+    test::LinesimProcess sim;
+    {
+        RawHeadsClient client(sim.config().sim.head_socket);
+        client.write("TILE job-c 0 5000\n" + std::string(3000, 'x'));
+    }
+    auto heads = drivers::make_head_sink(sim.config());
+    CHECK(heads->held(1s) == 0);
+    const auto bytes = separations(100, 8);
+    CHECK(heads->send({"job-c", 1, bytes}, 1s) == 1);
+}
+
+TEST_CASE("heads without checksums log the byte count and no hash", "[drivers][heads][sim]") {
+    test::LinesimOptions o;
+    o.head_checksums = false;
+    test::LinesimProcess sim(o);
+    auto heads = drivers::make_head_sink(sim.config());
+    auto gpio = drivers::make_gpio(sim.config());
+    gpio->set(drivers::GpioOutput::print_enable, true);
+    const auto bytes = separations(4096, 9);
+    CHECK(heads->send({"job-n", 0, bytes}, 1s) == 1);
+    sim.control("start-conveyor");
+    REQUIRE(test::eventually([&] { return sim.print_log().size() >= 1; }, 2s));
+    sim.control("stop-conveyor");
+    const auto log = sim.print_log();
+    CHECK(log[0]["status"] == "printed");
+    CHECK(log[0]["bytes"] == bytes.size());
+    CHECK_FALSE(log[0].contains("sha256"));
 }

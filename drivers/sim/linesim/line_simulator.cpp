@@ -41,7 +41,7 @@ LineSimulator::LineSimulator(const drivers::DriversConfig& config, const std::st
                             [this](const auto& names) { on_holding_written(names); }});
     gpio_ = std::make_unique<GpioChip>(config.sim.gpio_socket);
     heads_ = std::make_unique<PrintHeads>(config.sim.head_socket, config.sim.head_buffer_tiles,
-                                          print_log);
+                                          config.sim.head_checksums, print_log);
     control_fd_ = drivers::sim::listen_unix(config.sim.control_socket);
     modbus_->set("speed_setpoint", std::uint32_t(config.sim.speed_mm_s));
     conveyor_.advance(monotonic_now(), [](const ConveyorEvent&) {});

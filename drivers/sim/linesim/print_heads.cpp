@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <ctime>
 #include <nlohmann/json.hpp>
@@ -20,16 +21,18 @@ namespace {
 // Separations of one tile: 4 inks at 8 bit for a 1.2 x 1.2 m tile at 720 dpi is ~4.5 GB; the
 // largest format lines print today stay far below this bound.
 constexpr size_t kMaxTileBytes = size_t(1) << 30;
+constexpr size_t kHeaderRead = 4096;
+constexpr size_t kScratchBytes = size_t(1) << 20;
 
-std::string sha256_hex(std::string_view bytes) {
-    unsigned char digest[EVP_MAX_MD_SIZE];
+std::string sha256_hex(EVP_MD_CTX& digest) {
+    unsigned char bytes[EVP_MAX_MD_SIZE];
     unsigned int length = 0;
-    EVP_Digest(bytes.data(), bytes.size(), digest, &length, EVP_sha256(), nullptr);
+    EVP_DigestFinal_ex(&digest, bytes, &length);
     static const char* hex = "0123456789abcdef";
     std::string out;
     for (unsigned i = 0; i < length; ++i) {
-        out += hex[digest[i] >> 4];
-        out += hex[digest[i] & 15];
+        out += hex[bytes[i] >> 4];
+        out += hex[bytes[i] & 15];
     }
     return out;
 }
@@ -55,8 +58,12 @@ std::string wall_time(ns monotonic) {
 
 }  // namespace
 
-PrintHeads::PrintHeads(std::string path, int buffer_tiles, const std::string& log_path)
-    : path_(std::move(path)), capacity_(size_t(buffer_tiles)) {
+PrintHeads::PrintHeads(std::string path, int buffer_tiles, bool checksums,
+                       const std::string& log_path)
+    : path_(std::move(path)),
+      capacity_(size_t(buffer_tiles)),
+      checksums_(checksums),
+      scratch_(kScratchBytes) {
     listen_fd_ = drivers::sim::listen_unix(path_);
     if (!log_path.empty()) {
         log_.open(log_path, std::ios::app);
@@ -91,7 +98,9 @@ void PrintHeads::on_readable(int fd, ns now) {
     auto it = std::find_if(clients_.begin(), clients_.end(),
                            [fd](const Client& c) { return c.peer.fd == fd; });
     if (it == clients_.end()) return;
-    const bool open = it->peer.fill();
+    // Mid-tile, serve() reads the separations itself; between tiles only a header's worth is
+    // read, so that tile bytes do not pile up in the line buffer.
+    const bool open = it->in_tile || it->peer.fill(kHeaderRead);
     if (!serve(*it, now) || !open) {
         ::close(it->peer.fd);
         clients_.erase(it);
@@ -116,19 +125,41 @@ bool PrintHeads::serve(Client& c, ns now) {
                 return false;
             }
             c.expected = size_t(bytes);
+            c.remaining = c.expected;
             c.in_tile = true;
+            EVP_DigestInit_ex(c.digest.get(), EVP_sha256(), nullptr);
         }
-        if (c.peer.in.size() < c.expected) return true;
-        const std::string_view data(c.peer.in.data(), c.expected);
+        if (!receive_separations(c)) return false;
+        if (c.remaining > 0) return true;
+        c.in_tile = false;
         if (buffer_.size() >= capacity_) {
             c.peer.send("FULL\n");
         } else {
-            buffer_.push_back({c.job, c.tile, c.expected, sha256_hex(data), now});
+            buffer_.push_back(
+                {c.job, c.tile, c.expected, checksums_ ? sha256_hex(*c.digest) : "", now});
             c.peer.send("QUEUED " + std::to_string(buffer_.size()) + "\n");
         }
-        c.peer.in.erase(0, c.expected);
-        c.in_tile = false;
     }
+}
+
+// Hashes the separations as they come instead of keeping them: a 600 x 600 mm tile at 360 dpi
+// is 289 MB, and hashing it in one go after the last byte would stall the conveyor's clock.
+bool PrintHeads::receive_separations(Client& c) {
+    const size_t buffered = std::min(c.peer.in.size(), c.remaining);
+    if (checksums_) EVP_DigestUpdate(c.digest.get(), c.peer.in.data(), buffered);
+    c.peer.in.erase(0, buffered);
+    c.remaining -= buffered;
+    while (c.remaining > 0) {
+        const ssize_t n = ::recv(c.peer.fd, scratch_.data(), std::min(scratch_.size(), c.remaining),
+                                 MSG_DONTWAIT);
+        if (n > 0) {
+            if (checksums_) EVP_DigestUpdate(c.digest.get(), scratch_.data(), size_t(n));
+            c.remaining -= size_t(n);
+            continue;
+        }
+        return n < 0 && (errno == EAGAIN || errno == EINTR);
+    }
+    return true;
 }
 
 void PrintHeads::tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready) {
@@ -143,7 +174,7 @@ void PrintHeads::tile_arrives(std::uint64_t line_tile, ns at, bool print_enable,
         j["job"] = s.job;
         j["tile"] = s.tile;
         j["bytes"] = s.bytes;
-        j["sha256"] = s.sha256;
+        if (!s.sha256.empty()) j["sha256"] = s.sha256;
         ++printed_;
     } else {
         j["status"] = "missed";

@@ -1,8 +1,11 @@
 #pragma once
 
+#include <openssl/evp.h>
+
 #include <cstdint>
 #include <deque>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,7 +19,7 @@ namespace tilejet::linesim {
 
 class PrintHeads {
   public:
-    PrintHeads(std::string path, int buffer_tiles, const std::string& log_path);
+    PrintHeads(std::string path, int buffer_tiles, bool checksums, const std::string& log_path);
     ~PrintHeads();
 
     std::vector<int> fds() const;
@@ -45,20 +48,26 @@ class PrintHeads {
         Peer peer;
         std::string job;
         std::uint64_t tile = 0;
-        size_t expected = 0;
+        size_t expected = 0, remaining = 0;
         bool in_tile = false;
+        std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> digest{EVP_MD_CTX_new(),
+                                                                       &EVP_MD_CTX_free};
     };
 
     // False when the client sent something it cannot recover from (closed then).
     bool serve(Client& client, ns now);
+    // False when the client closed mid-tile.
+    bool receive_separations(Client& client);
     void log(const std::string& json_line);
 
     std::string path_;
     int listen_fd_ = -1;
     size_t capacity_;
+    bool checksums_;
     std::vector<Client> clients_;
     std::deque<Separations> buffer_;
     std::ofstream log_;
+    std::vector<char> scratch_;
     std::uint64_t printed_ = 0, missed_ = 0;
 };
 

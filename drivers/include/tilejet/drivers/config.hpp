@@ -64,6 +64,9 @@ struct SimConfig {
     int speed_mm_s = 500;        // speed setpoint at power-up
     bool start_running = false;  // conveyor running at power-up
     int head_buffer_tiles = 2;   // separations the heads hold ahead of the tiles
+    // false: the heads count the bytes but skip the SHA-256. At 289 MB a tile the hash costs a
+    // core at about 5 tiles/s; a throughput benchmark on a small machine cannot spare it.
+    bool head_checksums = true;
 };
 
 struct DriversConfig {
