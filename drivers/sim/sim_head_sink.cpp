@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "byte_pipe.hpp"
 #include "unix_socket.hpp"
 
 namespace tilejet::drivers::sim {
@@ -25,9 +26,23 @@ SimHeadSink::~SimHeadSink() = default;
 
 void SimHeadSink::connect(std::chrono::milliseconds timeout) {
     // Lazily, and again after an error, so a restarted simulator is picked up.
-    if (!socket_)
-        socket_ =
-            std::make_unique<UnixSocket>(UnixSocket::connect(path_, "sim heads " + path_, timeout));
+    if (socket_) return;
+    auto socket =
+        std::make_unique<UnixSocket>(UnixSocket::connect(path_, "sim heads " + path_, timeout));
+    auto pipe = std::make_unique<BytePipe>();
+    socket->send_with_fd("PIPE\n", pipe->read_end(), timeout);
+    pipe->close_read_end();
+    const auto reply = socket->read_line(timeout);
+    if (!reply || *reply != "PIPE OK")
+        throw std::runtime_error("sim heads " + path_ + ": the heads did not take the byte pipe" +
+                                 (reply ? ": '" + reply->substr(0, 100) + "'" : std::string()));
+    socket_ = std::move(socket);
+    pipe_ = std::move(pipe);
+}
+
+void SimHeadSink::disconnect() {
+    socket_.reset();
+    pipe_.reset();
 }
 
 int SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds timeout) {
@@ -39,8 +54,7 @@ int SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds tim
         const std::string header = "TILE " + tile.job_id + " " + std::to_string(tile.tile_index) +
                                    " " + std::to_string(tile.bytes.size()) + "\n";
         socket_->send_all(header, timeout);
-        socket_->send_all({reinterpret_cast<const char*>(tile.bytes.data()), tile.bytes.size()},
-                          timeout);
+        pipe_->write_all(tile.bytes, timeout, "sim heads " + path_);
         auto reply = socket_->read_line(timeout);
         if (!reply)
             throw std::runtime_error("sim heads: no answer for tile " +
@@ -55,7 +69,7 @@ int SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds tim
     } catch (const HeadsBusy&) {
         throw;
     } catch (...) {
-        socket_.reset();  // the stream may be mid-tile: start clean next time
+        disconnect();
         throw;
     }
 }
@@ -70,7 +84,7 @@ int SimHeadSink::held(std::chrono::milliseconds timeout) {
                                      std::to_string(timeout.count()) + " ms");
         return count_in(*reply, "HELD ");
     } catch (...) {
-        socket_.reset();
+        disconnect();
         throw;
     }
 }

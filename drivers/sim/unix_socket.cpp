@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <sys/un.h>
 #include <unistd.h>
 
@@ -85,6 +86,24 @@ void UnixSocket::send_all(std::string_view bytes, std::chrono::milliseconds time
         pollfd p{fd_, POLLOUT, 0};
         ::poll(&p, 1, int(left.count()) + 1);
     }
+}
+
+void UnixSocket::send_with_fd(std::string_view bytes, int fd, std::chrono::milliseconds timeout) {
+    iovec v{const_cast<char*>(bytes.data()), bytes.size()};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+    msghdr m{};
+    m.msg_iov = &v;
+    m.msg_iovlen = 1;
+    m.msg_control = control;
+    m.msg_controllen = sizeof control;
+    cmsghdr* c = CMSG_FIRSTHDR(&m);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof(int));
+    std::memcpy(CMSG_DATA(c), &fd, sizeof fd);
+    const ssize_t n = ::sendmsg(fd_, &m, MSG_NOSIGNAL);
+    if (n < 0) throw std::runtime_error(error_text(what_, "sendmsg"));
+    send_all(bytes.substr(size_t(n)), timeout);  // the descriptor went with the first byte
 }
 
 std::optional<std::string> UnixSocket::read_line(std::chrono::microseconds timeout) {

@@ -22,6 +22,8 @@ class UnixSocket {
                               std::chrono::milliseconds timeout);
 
     void send_all(std::string_view bytes, std::chrono::milliseconds timeout);
+    // `bytes` with a copy of file descriptor `fd` attached (SCM_RIGHTS); the caller keeps `fd`.
+    void send_with_fd(std::string_view bytes, int fd, std::chrono::milliseconds timeout);
     // The next '\n'-terminated line (without the '\n'), or nothing if `timeout` passes first.
     // Throws when the peer closed the socket.
     std::optional<std::string> read_line(std::chrono::microseconds timeout);

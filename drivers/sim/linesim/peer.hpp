@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdint>
 #include <string>
 
 // One client of a simulator socket: its fd and the bytes read but not yet used.
@@ -14,22 +13,19 @@ struct Peer {
     int fd = -1;
     std::string in;
 
-    // Reads what is there, up to about `limit` bytes, without blocking; false when the peer
-    // closed or failed.
-    bool fill(size_t limit = SIZE_MAX) {
+    // Reads what is there without blocking; false when the peer closed or failed.
+    bool fill() {
         char chunk[65536];
-        for (size_t got = 0; got < limit;) {
+        while (true) {
             const ssize_t n = ::recv(fd, chunk, sizeof chunk, MSG_DONTWAIT);
             if (n > 0) {
                 in.append(chunk, size_t(n));
-                got += size_t(n);
                 if (size_t(n) < sizeof chunk) return true;
                 continue;
             }
             if (n < 0 && (errno == EAGAIN || errno == EINTR)) return true;
             return false;
         }
-        return true;
     }
     // Best effort: a peer that does not read its replies loses them, the simulator never blocks.
     void send(const std::string& text) const {

@@ -1,12 +1,15 @@
 #include "print_heads.hpp"
 
+#include <fcntl.h>
 #include <openssl/evp.h>
 #include <sys/socket.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <ctime>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,6 +25,13 @@ namespace {
 // largest format lines print today stay far below this bound.
 constexpr size_t kMaxTileBytes = size_t(1) << 30;
 constexpr size_t kHeaderRead = 4096;
+
+// Whether the peer has not closed its end (nothing waiting to be read counts as open).
+bool still_open(int fd) {
+    char byte;
+    const ssize_t n = ::recv(fd, &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+    return n > 0 || (n < 0 && (errno == EAGAIN || errno == EINTR));
+}
 constexpr size_t kScratchBytes = size_t(1) << 20;
 
 std::string sha256_hex(EVP_MD_CTX& digest) {
@@ -65,6 +75,8 @@ PrintHeads::PrintHeads(std::string path, int buffer_tiles, bool checksums,
       checksums_(checksums),
       scratch_(kScratchBytes) {
     listen_fd_ = drivers::sim::listen_unix(path_);
+    devnull_ = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (devnull_ < 0) throw std::runtime_error("cannot open /dev/null");
     if (!log_path.empty()) {
         log_.open(log_path, std::ios::app);
         if (!log_) throw std::runtime_error("cannot open print log " + log_path);
@@ -75,13 +87,21 @@ PrintHeads::~PrintHeads() {
     for (const Client& c : clients_)
         ::close(c.peer.fd);
     ::close(listen_fd_);
+    ::close(devnull_);
     ::unlink(path_.c_str());
+}
+
+void PrintHeads::PipeEnd::reset(int fd) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = fd;
 }
 
 std::vector<int> PrintHeads::fds() const {
     std::vector<int> fds{listen_fd_};
-    for (const Client& c : clients_)
+    for (const Client& c : clients_) {
         fds.push_back(c.peer.fd);
+        if (c.in_tile && c.pipe.fd() >= 0) fds.push_back(c.pipe.fd());
+    }
     return fds;
 }
 
@@ -96,11 +116,11 @@ void PrintHeads::on_readable(int fd, ns now) {
         return;
     }
     auto it = std::find_if(clients_.begin(), clients_.end(),
-                           [fd](const Client& c) { return c.peer.fd == fd; });
+                           [fd](const Client& c) { return c.peer.fd == fd || c.pipe.fd() == fd; });
     if (it == clients_.end()) return;
-    // Mid-tile, serve() reads the separations itself; between tiles only a header's worth is
-    // read, so that tile bytes do not pile up in the line buffer.
-    const bool open = it->in_tile || it->peer.fill(kHeaderRead);
+    // Separations sent on the socket itself are read by serve(), into the hash and no further.
+    const bool tile_bytes_on_socket = it->in_tile && it->pipe.fd() < 0;
+    const bool open = fd != it->peer.fd || tile_bytes_on_socket || read_socket(*it);
     if (!serve(*it, now) || !open) {
         ::close(it->peer.fd);
         clients_.erase(it);
@@ -112,6 +132,14 @@ bool PrintHeads::serve(Client& c, ns now) {
         if (!c.in_tile) {
             std::string line;
             if (!c.peer.next_line(line)) return c.peer.in.size() < 4096;
+            if (line == "PIPE") {
+                if (c.pipe.fd() < 0) {
+                    c.peer.send("ERROR PIPE came without a file descriptor\n");
+                    return false;
+                }
+                c.peer.send("PIPE OK\n");
+                continue;
+            }
             if (line == "HELD?") {
                 c.peer.send("HELD " + std::to_string(buffer_.size()) + "\n");
                 continue;
@@ -132,6 +160,10 @@ bool PrintHeads::serve(Client& c, ns now) {
         if (!receive_separations(c)) return false;
         if (c.remaining > 0) return true;
         c.in_tile = false;
+        // Piped separations are the sender's own pages (vmsplice). A sender that gave up on this
+        // tile closed the connection before it reused them, so only while it is still open are
+        // the bytes read the ones it sent.
+        if (c.pipe.fd() >= 0 && !still_open(c.peer.fd)) return false;
         if (buffer_.size() >= capacity_) {
             c.peer.send("FULL\n");
         } else {
@@ -145,6 +177,7 @@ bool PrintHeads::serve(Client& c, ns now) {
 // Hashes the separations as they come instead of keeping them: a 600 x 600 mm tile at 360 dpi
 // is 289 MB, and hashing it in one go after the last byte would stall the conveyor's clock.
 bool PrintHeads::receive_separations(Client& c) {
+    if (c.pipe.fd() >= 0) return receive_from_pipe(c);
     const size_t buffered = std::min(c.peer.in.size(), c.remaining);
     if (checksums_) EVP_DigestUpdate(c.digest.get(), c.peer.in.data(), buffered);
     c.peer.in.erase(0, buffered);
@@ -159,6 +192,46 @@ bool PrintHeads::receive_separations(Client& c) {
         }
         return n < 0 && (errno == EAGAIN || errno == EINTR);
     }
+    return true;
+}
+
+bool PrintHeads::receive_from_pipe(Client& c) {
+    while (c.remaining > 0) {
+        // Without checksums the bytes go to /dev/null by splice, never copied into this process.
+        const ssize_t n = checksums_ ? ::read(c.pipe.fd(), scratch_.data(),
+                                              std::min(scratch_.size(), c.remaining))
+                                     : ::splice(c.pipe.fd(), nullptr, devnull_, nullptr,
+                                                c.remaining, SPLICE_F_MOVE | SPLICE_F_NONBLOCK);
+        if (n > 0) {
+            if (checksums_) EVP_DigestUpdate(c.digest.get(), scratch_.data(), size_t(n));
+            c.remaining -= size_t(n);
+            continue;
+        }
+        return n < 0 && (errno == EAGAIN || errno == EINTR);
+    }
+    return true;
+}
+
+bool PrintHeads::read_socket(Client& c) {
+    char chunk[kHeaderRead];
+    iovec v{chunk, sizeof chunk};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))];
+    msghdr m{};
+    m.msg_iov = &v;
+    m.msg_iovlen = 1;
+    m.msg_control = control;
+    m.msg_controllen = sizeof control;
+    const ssize_t n = ::recvmsg(c.peer.fd, &m, MSG_DONTWAIT | MSG_CMSG_CLOEXEC);
+    if (n == 0) return false;
+    if (n < 0) return errno == EAGAIN || errno == EINTR;
+    for (cmsghdr* h = CMSG_FIRSTHDR(&m); h; h = CMSG_NXTHDR(&m, h)) {
+        if (h->cmsg_level != SOL_SOCKET || h->cmsg_type != SCM_RIGHTS) continue;
+        int fd = -1;
+        std::memcpy(&fd, CMSG_DATA(h), sizeof fd);
+        ::fcntl(fd, F_SETFL, O_NONBLOCK);
+        c.pipe.reset(fd);
+    }
+    c.peer.in.append(chunk, size_t(n));
     return true;
 }
 

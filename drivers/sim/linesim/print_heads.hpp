@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conveyor.hpp"
@@ -44,8 +45,25 @@ class PrintHeads {
         std::string sha256;
         ns received;
     };
+    // The read end of a client's byte pipe, closed with the client.
+    class PipeEnd {
+      public:
+        PipeEnd() = default;
+        ~PipeEnd() { reset(); }
+        PipeEnd(PipeEnd&& o) noexcept : fd_(std::exchange(o.fd_, -1)) {}
+        PipeEnd& operator=(PipeEnd&& o) noexcept {
+            if (this != &o) reset(std::exchange(o.fd_, -1));
+            return *this;
+        }
+        void reset(int fd = -1);
+        int fd() const { return fd_; }
+
+      private:
+        int fd_ = -1;
+    };
     struct Client {
         Peer peer;
+        PipeEnd pipe;  // separations come here once the client has passed one (PIPE)
         std::string job;
         std::uint64_t tile = 0;
         size_t expected = 0, remaining = 0;
@@ -58,6 +76,9 @@ class PrintHeads {
     bool serve(Client& client, ns now);
     // False when the client closed mid-tile.
     bool receive_separations(Client& client);
+    bool receive_from_pipe(Client& client);
+    // What came on the client's socket: lines, and a pipe passed with them. False once closed.
+    bool read_socket(Client& client);
     void log(const std::string& json_line);
 
     std::string path_;
@@ -68,6 +89,7 @@ class PrintHeads {
     std::deque<Separations> buffer_;
     std::ofstream log_;
     std::vector<char> scratch_;
+    int devnull_ = -1;
     std::uint64_t printed_ = 0, missed_ = 0;
 };
 

@@ -7,12 +7,14 @@
 
 namespace tilejet::drivers::sim {
 
+class BytePipe;
 class UnixSocket;
 
-// HeadSink on the line simulator's heads ([sim] head_socket). Per tile:
-//   tilejet -> heads:  TILE <job-id> <tile-index> <byte-count>\n  then the bytes
+// HeadSink on the line simulator's heads ([sim] head_socket). On connecting it hands the heads
+// the read end of a pipe (PIPE, answered PIPE OK) that carries the separations. Per tile:
+//   tilejet -> heads:  TILE <job-id> <tile-index> <byte-count>\n  then the bytes, on the pipe
 //   heads -> tilejet:  QUEUED <tiles-in-buffer> | FULL | ERROR <message>
-// and on request (HELD?) the tiles in the buffer (HELD <n>).
+// and on request (HELD?) the tiles in the buffer (HELD <n>). drivers/sim/PROTOCOLS.md has it all.
 class SimHeadSink : public HeadSink {
   public:
     explicit SimHeadSink(std::string socket_path);
@@ -26,6 +28,9 @@ class SimHeadSink : public HeadSink {
 
     std::string path_;
     std::unique_ptr<UnixSocket> socket_;
+    std::unique_ptr<BytePipe> pipe_;
+    // A failed exchange may leave the stream mid-tile: the next one starts on a new connection.
+    void disconnect();
 };
 
 }  // namespace tilejet::drivers::sim
