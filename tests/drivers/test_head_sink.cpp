@@ -1,11 +1,13 @@
 // The sim head sink: separations in, the print log out, missed tiles never printed late.
 
 #include <openssl/evp.h>
+#include <sys/mman.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <thread>
 
 #include "linesim_process.hpp"
@@ -136,6 +138,22 @@ class RawHeadsClient {
             bytes.remove_prefix(size_t(n));
         }
     }
+    // `text` with file descriptor `fd` attached, as SimHeadSink passes its pipe.
+    void write_with_fd(const std::string& text, int fd) {
+        iovec v{const_cast<char*>(text.data()), text.size()};
+        alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+        msghdr m{};
+        m.msg_iov = &v;
+        m.msg_iovlen = 1;
+        m.msg_control = control;
+        m.msg_controllen = sizeof control;
+        cmsghdr* c = CMSG_FIRSTHDR(&m);
+        c->cmsg_level = SOL_SOCKET;
+        c->cmsg_type = SCM_RIGHTS;
+        c->cmsg_len = CMSG_LEN(sizeof(int));
+        std::memcpy(CMSG_DATA(c), &fd, sizeof fd);
+        REQUIRE(::sendmsg(fd_, &m, MSG_NOSIGNAL) == ssize_t(text.size()));
+    }
     std::string read_line() {
         std::string line;
         char c = 0;
@@ -216,4 +234,81 @@ TEST_CASE("heads without checksums log the byte count and no hash", "[drivers][h
     CHECK(log[0]["status"] == "printed");
     CHECK(log[0]["bytes"] == bytes.size());
     CHECK_FALSE(log[0].contains("sha256"));
+}
+
+TEST_CASE("PIPE without a file descriptor is refused", "[drivers][heads][sim][fault]") {
+    test::LinesimProcess sim;
+    RawHeadsClient client(sim.config().sim.head_socket);
+    client.write("PIPE\n");
+    CHECK(client.read_line().starts_with("ERROR PIPE"));
+}
+
+TEST_CASE("a piped tile whose sender hung up before the heads had it all is not queued",
+          "[drivers][heads][sim][fault]") {
+    test::LinesimProcess sim;
+    int ends[2];
+    REQUIRE(::pipe(ends) == 0);
+    {
+        RawHeadsClient client(sim.config().sim.head_socket);
+        client.write_with_fd("PIPE\n", ends[0]);
+        ::close(ends[0]);
+        REQUIRE(client.read_line() == "PIPE OK");
+        client.write("TILE job-h 0 5000\n");
+        REQUIRE(::write(ends[1], std::string(3000, 'x').data(), 3000) == 3000);
+        std::this_thread::sleep_for(50ms);  // the heads have read the first part
+    }
+    // The sender gave up: from here on its pages may hold anything. The rest still arrives.
+    REQUIRE(::write(ends[1], std::string(2000, 'y').data(), 2000) == 2000);
+    ::close(ends[1]);
+    auto heads = drivers::make_head_sink(sim.config());
+    CHECK(heads->held(1s) == 0);
+}
+
+TEST_CASE("separations sent through the pipe are hashed whole", "[drivers][heads][sim]") {
+    test::LinesimProcess sim;
+    int ends[2];
+    REQUIRE(::pipe(ends) == 0);
+    RawHeadsClient client(sim.config().sim.head_socket);
+    client.write_with_fd("PIPE\n", ends[0]);
+    ::close(ends[0]);
+    REQUIRE(client.read_line() == "PIPE OK");
+    const auto a = separations((2 << 20) + 3, 10);
+    client.write("TILE job-q 4 " + std::to_string(a.size()) + "\n");
+    std::thread writer([&] {
+        for (size_t done = 0; done < a.size();) {
+            const ssize_t n = ::write(ends[1], a.data() + done, a.size() - done);
+            if (n <= 0) break;
+            done += size_t(n);
+        }
+    });
+    CHECK(client.read_line() == "QUEUED 1");
+    writer.join();
+    ::close(ends[1]);
+    auto gpio = drivers::make_gpio(sim.config());
+    gpio->set(drivers::GpioOutput::print_enable, true);
+    sim.control("start-conveyor");
+    REQUIRE(test::eventually([&] { return sim.print_log().size() >= 1; }, 2s));
+    sim.control("stop-conveyor");
+    const auto log = sim.print_log();
+    CHECK(log[0]["tile"] == 4);
+    CHECK(log[0]["bytes"] == a.size());
+    CHECK(log[0]["sha256"] == sha256(a));
+}
+
+TEST_CASE("heads that close the pipe mid-tile give an error, not a SIGPIPE",
+          "[drivers][heads][sim][fault]") {
+    test::LinesimProcess sim;
+    auto heads = drivers::make_head_sink(sim.config());
+    // Above the heads' 1 GiB limit, so they refuse the header and close while the bytes are
+    // still going into the pipe. Untouched anonymous pages cost no memory.
+    const size_t size = (size_t(1) << 30) + 4096;
+    void* pages =
+        ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    REQUIRE(pages != MAP_FAILED);
+    const std::span<const std::uint8_t> bytes(static_cast<const std::uint8_t*>(pages), size);
+    // This process does not ignore SIGPIPE: the test would die here if the sink let it through.
+    CHECK_THROWS_AS(heads->send({"job-big", 0, bytes}, 2s), std::runtime_error);
+    ::munmap(pages, size);
+    const auto small = separations(100, 11);
+    CHECK(heads->send({"job-big", 1, small}, 1s) == 1);  // and the next connection works
 }
