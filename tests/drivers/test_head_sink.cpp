@@ -154,6 +154,15 @@ class RawHeadsClient {
         std::memcpy(CMSG_DATA(c), &fd, sizeof fd);
         REQUIRE(::sendmsg(fd_, &m, MSG_NOSIGNAL) == ssize_t(text.size()));
     }
+    // A pipe handed to the heads as SimHeadSink does (PIPE); returns its write end.
+    int pass_pipe() {
+        int ends[2];
+        REQUIRE(::pipe(ends) == 0);
+        write_with_fd("PIPE\n", ends[0]);
+        ::close(ends[0]);
+        REQUIRE(read_line() == "PIPE OK");
+        return ends[1];
+    }
     std::string read_line() {
         std::string line;
         char c = 0;
@@ -246,44 +255,37 @@ TEST_CASE("PIPE without a file descriptor is refused", "[drivers][heads][sim][fa
 TEST_CASE("a piped tile whose sender hung up before the heads had it all is not queued",
           "[drivers][heads][sim][fault]") {
     test::LinesimProcess sim;
-    int ends[2];
-    REQUIRE(::pipe(ends) == 0);
+    int feed = -1;
     {
         RawHeadsClient client(sim.config().sim.head_socket);
-        client.write_with_fd("PIPE\n", ends[0]);
-        ::close(ends[0]);
-        REQUIRE(client.read_line() == "PIPE OK");
+        feed = client.pass_pipe();
         client.write("TILE job-h 0 5000\n");
-        REQUIRE(::write(ends[1], std::string(3000, 'x').data(), 3000) == 3000);
+        REQUIRE(::write(feed, std::string(3000, 'x').data(), 3000) == 3000);
         std::this_thread::sleep_for(50ms);  // the heads have read the first part
     }
     // The sender gave up: from here on its pages may hold anything. The rest still arrives.
-    REQUIRE(::write(ends[1], std::string(2000, 'y').data(), 2000) == 2000);
-    ::close(ends[1]);
+    REQUIRE(::write(feed, std::string(2000, 'y').data(), 2000) == 2000);
+    ::close(feed);
     auto heads = drivers::make_head_sink(sim.config());
     CHECK(heads->held(1s) == 0);
 }
 
 TEST_CASE("separations sent through the pipe are hashed whole", "[drivers][heads][sim]") {
     test::LinesimProcess sim;
-    int ends[2];
-    REQUIRE(::pipe(ends) == 0);
     RawHeadsClient client(sim.config().sim.head_socket);
-    client.write_with_fd("PIPE\n", ends[0]);
-    ::close(ends[0]);
-    REQUIRE(client.read_line() == "PIPE OK");
+    const int feed = client.pass_pipe();
     const auto a = separations((2 << 20) + 3, 10);
     client.write("TILE job-q 4 " + std::to_string(a.size()) + "\n");
     std::thread writer([&] {
         for (size_t done = 0; done < a.size();) {
-            const ssize_t n = ::write(ends[1], a.data() + done, a.size() - done);
+            const ssize_t n = ::write(feed, a.data() + done, a.size() - done);
             if (n <= 0) break;
             done += size_t(n);
         }
     });
     CHECK(client.read_line() == "QUEUED 1");
     writer.join();
-    ::close(ends[1]);
+    ::close(feed);
     auto gpio = drivers::make_gpio(sim.config());
     gpio->set(drivers::GpioOutput::print_enable, true);
     sim.control("start-conveyor");

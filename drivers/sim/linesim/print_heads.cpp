@@ -177,31 +177,20 @@ bool PrintHeads::serve(Client& c, ns now) {
 // Hashes the separations as they come instead of keeping them: a 600 x 600 mm tile at 360 dpi
 // is 289 MB, and hashing it in one go after the last byte would stall the conveyor's clock.
 bool PrintHeads::receive_separations(Client& c) {
-    if (c.pipe.fd() >= 0) return receive_from_pipe(c);
-    const size_t buffered = std::min(c.peer.in.size(), c.remaining);
-    if (checksums_) EVP_DigestUpdate(c.digest.get(), c.peer.in.data(), buffered);
-    c.peer.in.erase(0, buffered);
-    c.remaining -= buffered;
-    while (c.remaining > 0) {
-        const ssize_t n = ::recv(c.peer.fd, scratch_.data(), std::min(scratch_.size(), c.remaining),
-                                 MSG_DONTWAIT);
-        if (n > 0) {
-            if (checksums_) EVP_DigestUpdate(c.digest.get(), scratch_.data(), size_t(n));
-            c.remaining -= size_t(n);
-            continue;
-        }
-        return n < 0 && (errno == EAGAIN || errno == EINTR);
+    const bool piped = c.pipe.fd() >= 0;
+    if (!piped) {  // what came on the socket behind the header
+        const size_t buffered = std::min(c.peer.in.size(), c.remaining);
+        if (checksums_) EVP_DigestUpdate(c.digest.get(), c.peer.in.data(), buffered);
+        c.peer.in.erase(0, buffered);
+        c.remaining -= buffered;
     }
-    return true;
-}
-
-bool PrintHeads::receive_from_pipe(Client& c) {
     while (c.remaining > 0) {
-        // Without checksums the bytes go to /dev/null by splice, never copied into this process.
-        const ssize_t n = checksums_ ? ::read(c.pipe.fd(), scratch_.data(),
-                                              std::min(scratch_.size(), c.remaining))
-                                     : ::splice(c.pipe.fd(), nullptr, devnull_, nullptr,
-                                                c.remaining, SPLICE_F_MOVE | SPLICE_F_NONBLOCK);
+        const size_t want = std::min(scratch_.size(), c.remaining);
+        // Piped bytes the heads need not hash go on to /dev/null by splice, never copied here.
+        const ssize_t n = !piped       ? ::recv(c.peer.fd, scratch_.data(), want, MSG_DONTWAIT)
+                          : checksums_ ? ::read(c.pipe.fd(), scratch_.data(), want)
+                                       : ::splice(c.pipe.fd(), nullptr, devnull_, nullptr,
+                                                  c.remaining, SPLICE_F_MOVE | SPLICE_F_NONBLOCK);
         if (n > 0) {
             if (checksums_) EVP_DigestUpdate(c.digest.get(), scratch_.data(), size_t(n));
             c.remaining -= size_t(n);

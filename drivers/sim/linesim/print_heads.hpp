@@ -76,7 +76,6 @@ class PrintHeads {
     bool serve(Client& client, ns now);
     // False when the client closed mid-tile.
     bool receive_separations(Client& client);
-    bool receive_from_pipe(Client& client);
     // What came on the client's socket: lines, and a pipe passed with them. False once closed.
     bool read_socket(Client& client);
     void log(const std::string& json_line);
