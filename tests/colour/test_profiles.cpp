@@ -91,6 +91,36 @@ TEST_CASE("measurements missing their Lab or CMYK fields fail naming file and fi
     REQUIRE_THROWS_WITH(colour::read_measurements(dir / "junk.ti3"), Contains("junk.ti3"));
 }
 
+TEST_CASE("measurements whose patch count the data does not bear out fail naming the file",
+          "[colour][profile]") {
+    test::TempDir dir;
+    // Regression (fuzzing, tests/fuzz/corpus/fuzz_measurements/regression-huge-number-of-sets):
+    // NUMBER_OF_SETS 4.3e19 was converted to int, undefined behaviour.
+    const auto crash = std::filesystem::path(TILEJET_SOURCE_DIR) /
+                       "tests/fuzz/corpus/fuzz_measurements/regression-huge-number-of-sets";
+    REQUIRE_THROWS_WITH(colour::read_measurements(crash),
+                        Contains("regression-huge-number-of-sets") && Contains("NUMBER_OF_SETS"));
+
+    std::string text = slurp(test::fogra39_measurements());
+    const std::string sets = "NUMBER_OF_SETS 1617";
+    const size_t at = text.find(sets);
+    REQUIRE(at != std::string::npos);
+    std::string more = text;
+    more.replace(at, sets.size(), "NUMBER_OF_SETS 1618");  // one patch more than the data
+    test::write_file(dir / "more.ti3", more);
+    REQUIRE_THROWS_WITH(colour::read_measurements(dir / "more.ti3"),
+                        Contains("more.ti3") && Contains("NUMBER_OF_SETS"));
+    const size_t data = text.find("BEGIN_DATA\r\n");  // CRLF lines
+    REQUIRE(data != std::string::npos);
+    test::write_file(dir / "no-data.ti3", text.substr(0, data));  // the format, then nothing
+    REQUIRE_THROWS_WITH(colour::read_measurements(dir / "no-data.ti3"),
+                        Contains("no-data.ti3") && Contains("patch 1 of 1617"));
+    std::string huge = text;
+    huge.replace(at, sets.size(), "NUMBER_OF_SETS 2000000000");
+    test::write_file(dir / "huge.ti3", huge);
+    REQUIRE_THROWS_WITH(colour::read_measurements(dir / "huge.ti3"), Contains("huge.ti3"));
+}
+
 TEST_CASE("a profile built from FOGRA39L measurements predicts them within 1.5 dE2000",
           "[colour][profile][slow]") {
     test::TempDir dir;
