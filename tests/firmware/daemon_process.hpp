@@ -11,6 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -74,6 +76,12 @@ class DaemonProcess {
         int out[2];
         if (pipe(out) != 0) throw std::runtime_error("pipe failed");
         pid_ = fork();
+        if (pid_ < 0) {
+            const std::string why = std::strerror(errno);
+            close(out[0]);
+            close(out[1]);
+            throw std::runtime_error("tilejetd not started: fork: " + why);
+        }
         if (pid_ == 0) {
             dup2(out[1], STDOUT_FILENO);
             const int log = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
@@ -98,8 +106,17 @@ class DaemonProcess {
         }
         close(out[0]);
         if (text.find('\n') == std::string::npos) {
+            // Whether it died (and how) or hangs is the first thing to know.
+            int status = 0;
+            std::string how = "still running after 10 s without its ready line";
+            if (waitpid(pid_, &status, WNOHANG) == pid_) {
+                how = WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                          : "exited with " + std::to_string(WEXITSTATUS(status));
+                pid_ = -1;
+            }
             stop(SIGKILL);
-            throw std::runtime_error("tilejetd did not start; log:\n" + log());
+            throw std::runtime_error("tilejetd did not start (" + how + "; stdout '" + text +
+                                     "'); log:\n" + log());
         }
         port_ = nlohmann::json::parse(text.substr(0, text.find('\n'))).at("api_port").get<int>();
     }
