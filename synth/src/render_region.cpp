@@ -6,6 +6,7 @@
 #include "diamond.hpp"
 #include "plane_limits.hpp"
 #include "shown_patches.hpp"
+#include "stream_copy.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::synth {
@@ -15,40 +16,83 @@ namespace {
 using detail::CellGrid;
 using detail::floor_mod;
 
-// Rows [row0, row1) of the region: first the cell image everywhere, then every active patch
-// of every cell whose diamond reaches the band, run by run. Patches never overlap one another
-// (diamonds, the A/B split and overlap removal see to that), so the order of the copies does
-// not matter and the bytes equal Sampler::sample's.
+// What one strip of rows may take: both of its passes stay in the core's own cache (L2).
+constexpr size_t kStripBytes = 256 * 1024;
+
+// Rows [row0, row1) of the region, a strip of rows at a time. Each strip is composed in a
+// cache-sized scratch buffer, first the cell image everywhere and then every active patch of
+// every cell whose diamond reaches it, run by run, and then streamed out once (stream_copy.hpp).
+// Patches never overlap one another (diamonds, the A/B split and overlap removal see to that),
+// so the order of the copies does not matter and the bytes equal Sampler::sample's.
 void render_band(const TextureMap& map, uint64_t seed, const Region& region, int row0, int row1,
                  uint8_t* rgb, size_t stride) {
     const CellGrid grid(map.cell_width, map.cell_height);
     const int64_t cw = grid.cell_width(), ch = grid.cell_height();
     const CellImage& image = map.cell_images.front();
-
     const int64_t px_bytes = int64_t(map.source.elemSize());  // 3 for RGB, 4 for CMYK
     const int64_t x0 = region.x, x1 = region.x + region.width;
-    for (int r = row0; r < row1; ++r) {
-        const uint8_t* cell_row = image.rgb.ptr<uint8_t>(int(floor_mod(region.y + r, ch)));
-        uint8_t* dst = rgb + size_t(r) * stride;
-        int64_t offset = floor_mod(x0, cw);
-        for (int64_t left = region.width; left > 0;) {
-            const int64_t n = std::min(cw - offset, left);
-            std::memcpy(dst, cell_row + px_bytes * offset, size_t(px_bytes * n));
-            dst += px_bytes * n, left -= n, offset = 0;
-        }
+    const size_t row_bytes = size_t(px_bytes * region.width);
+
+    // The band's patches once (the cell walk costs too much to repeat per strip), each filed
+    // under the first strip it reaches.
+    struct Shown {
+        const Patch* patch;
+        int64_t x, y;
+    };
+    const int strip_rows = int(std::max<size_t>(1, kStripBytes / row_bytes));
+    const int strips = (row1 - row0 + strip_rows - 1) / strip_rows;
+    const int64_t band_y0 = region.y + row0;
+    const auto first_strip = [&](const Shown& s) {
+        return size_t((std::max(s.y, band_y0) - band_y0) / strip_rows);
+    };
+    std::vector<Shown> shown;
+    detail::for_each_shown_patch(map, seed, x0, x1, band_y0, region.y + row1,
+                                 [&](const Patch& p, int64_t px, int64_t py) {
+                                     shown.push_back({&p, px, py});
+                                 });
+    std::vector<size_t> filed_from(size_t(strips) + 1, 0);
+    for (const Shown& s : shown)
+        ++filed_from[first_strip(s) + 1];
+    for (size_t k = 1; k < filed_from.size(); ++k)
+        filed_from[k] += filed_from[k - 1];
+    std::vector<Shown> filed(shown.size());
+    {
+        std::vector<size_t> next(filed_from.begin(), filed_from.end() - 1);
+        for (const Shown& s : shown)
+            filed[next[first_strip(s)]++] = s;
     }
 
-    const Patch* patch = nullptr;
-    int64_t patch_x = 0, patch_y = 0;
-    detail::for_each_shown_run(
-        map, seed, x0, x1, region.y + row0, region.y + row1,
-        [&](const Patch& p, int64_t px, int64_t py) { patch = &p, patch_x = px, patch_y = py; },
-        [&](int64_t y, int64_t a, int64_t b) {
-            const uint8_t* src = map.source.ptr<uint8_t>(patch->src_y + int(y - patch_y));
-            std::memcpy(rgb + size_t(y - region.y) * stride + px_bytes * (a - x0),
-                        src + px_bytes * (patch->src_x + (a - patch_x)),
-                        size_t(px_bytes * (b - a)));
-        });
+    std::vector<uint8_t> strip(size_t(strip_rows) * row_bytes);
+    std::vector<Shown> reaching;  // patches that reach the current strip, and maybe beyond
+    for (int k = 0; k < strips; ++k) {
+        const int s0 = row0 + k * strip_rows, s1 = std::min(row1, s0 + strip_rows);
+        const int64_t y0 = region.y + s0, y1 = region.y + s1;
+        for (int64_t y = y0; y < y1; ++y) {
+            const uint8_t* cell_row = image.rgb.ptr<uint8_t>(int(floor_mod(y, ch)));
+            uint8_t* dst = strip.data() + size_t(y - y0) * row_bytes;
+            int64_t offset = floor_mod(x0, cw);
+            for (int64_t left = region.width; left > 0;) {
+                const int64_t n = std::min(cw - offset, left);
+                std::memcpy(dst, cell_row + px_bytes * offset, size_t(px_bytes * n));
+                dst += px_bytes * n, left -= n, offset = 0;
+            }
+        }
+        std::erase_if(reaching, [&](const Shown& s) { return s.y + s.patch->height <= y0; });
+        reaching.insert(reaching.end(), filed.begin() + std::ptrdiff_t(filed_from[size_t(k)]),
+                        filed.begin() + std::ptrdiff_t(filed_from[size_t(k) + 1]));
+        for (const Shown& s : reaching) {
+            const Patch& p = *s.patch;
+            detail::for_each_run(p, s.x, s.y, x0, x1, y0, y1, [&](int64_t y, int64_t a, int64_t b) {
+                const uint8_t* src = map.source.ptr<uint8_t>(p.src_y + int(y - s.y));
+                std::memcpy(strip.data() + size_t(y - y0) * row_bytes + px_bytes * (a - x0),
+                            src + px_bytes * (p.src_x + (a - s.x)), size_t(px_bytes * (b - a)));
+            });
+        }
+        for (int r = s0; r < s1; ++r)
+            detail::stream_copy(rgb + size_t(r) * stride, strip.data() + size_t(r - s0) * row_bytes,
+                                row_bytes);
+    }
+    detail::stream_fence();
 }
 
 }  // namespace

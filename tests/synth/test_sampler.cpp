@@ -70,6 +70,33 @@ TEST_CASE("sample equals region render at random points, huge and negative inclu
     }
 }
 
+TEST_CASE(
+    "a wide region, built strip by strip, equals Sampler::sample at any stride and "
+    "alignment",
+    "[sampler]") {
+    // Wide enough that a cache-sized strip holds only a few rows, so patches cross strip
+    // borders; written one byte off alignment and with padding after each row.
+    const TextureMap& map = small_map();
+    const Region region{-4321, 876, 9000, 37};
+    const size_t row = size_t(region.width) * 3, stride = row + 5;
+    std::vector<uint8_t> buffer(1 + stride * size_t(region.height), 0xA5);
+    render_region(map, 11, region, buffer.data() + 1, stride, 2);
+    Sampler sampler(map, 11);
+    size_t mismatches = 0;
+    for (int y = 0; y < region.height; ++y) {
+        const uint8_t* line = buffer.data() + 1 + size_t(y) * stride;
+        for (int x = 0; x < region.width; ++x) {
+            const Rgb s = sampler.sample(region.x + x, region.y + y);
+            mismatches += !(s == Rgb{line[3 * x], line[3 * x + 1], line[3 * x + 2]});
+        }
+        // The padding is not the region's: it keeps what it had.
+        for (size_t k = row; k < stride; ++k)
+            mismatches += line[k] != 0xA5;
+    }
+    REQUIRE(buffer[0] == 0xA5);
+    REQUIRE(mismatches == 0);
+}
+
 TEST_CASE("a region rendered in pieces equals the region rendered whole", "[sampler]") {
     const TextureMap& map = small_map();
     const Region whole{-777, 1234, 400, 300};
