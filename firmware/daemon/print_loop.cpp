@@ -165,6 +165,11 @@ void PrintLoop::handle_gpio_events(std::chrono::milliseconds wait) {
 
 bool PrintLoop::poll_line() {
     const Clock::time_point start = Clock::now();
+    // Tiles that arrive after this read get the print-enable of this moment, so it is taken
+    // now, not after the read and the store writes: an e-stop latched in between (another
+    // thread) would make a tile printed meanwhile look unprinted, and it would go out twice.
+    // The soak found that under load. A change while they pass shows at the next poll.
+    const bool enabled_at_read = gpio_->output(GpioOutput::print_enable);
     try {
         line_state_ = line_->read_state();
     } catch (const LinkError& e) {
@@ -197,7 +202,7 @@ bool PrintLoop::poll_line() {
         earliest_next_ = prev_poll_start_ + arrived * pitch_time();
     }
     prev_poll_start_ = start;
-    enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
+    enabled_at_poll_ = enabled_at_read;
     if (!line_state_.running) run_commanded_ = false;
     return true;
 }
