@@ -389,11 +389,19 @@ void PrintLoop::print_turn() {
         }
         while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ && send_next(false)) {
         }
-        if (!mirror_.empty() && !heads_hold_mirror()) return;  // the next turn fills them again
-        if (!mirror_.empty())
-            start_conveyor();
-        else
+        if (mirror_.empty()) {
             state_.set(LineStatus::ready, "waiting for the first tiles to render");
+            return;
+        }
+        // The queue behind the heads must be full too before anything moves: a job's first
+        // tiles render into fresh memory, slower than a fast line takes them, and a tile that
+        // passes with nothing ready slows the conveyor for many tiles after.
+        if (!render_.all_ready()) {
+            state_.set(LineStatus::ready, "rendering ahead before the conveyor starts");
+            return;
+        }
+        if (!heads_hold_mirror()) return;  // the next turn fills them again
+        start_conveyor();
         return;
     }
     // Running: send only into the quiet time before the next tile can arrive.

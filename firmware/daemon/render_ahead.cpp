@@ -60,6 +60,15 @@ int RenderAhead::ready() const {
     return n;
 }
 
+bool RenderAhead::all_ready() const {
+    std::lock_guard lock(mutex_);
+    for (const Key& k : wanted_) {
+        auto it = slots_.find(k);
+        if (it == slots_.end() || !it->second.tile) return false;
+    }
+    return true;
+}
+
 void RenderAhead::recycle(Separations&& tile) {
     std::lock_guard lock(mutex_);
     if (int(spare_.size()) < capacity_) spare_.push_back(std::move(tile.bytes));

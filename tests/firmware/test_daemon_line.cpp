@@ -171,11 +171,13 @@ TEST_CASE("a Modbus link drop mid-run ends with every tile printed exactly once"
 
 TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state says why",
           "[daemon][line][render]") {
+    // 100 tiles a second, and heads that only count the bytes: rendering is what falls behind.
     test::LinesimOptions o = line_options();
     o.speed_mm_s = 2000;
-    o.tile_pitch_mm = 120;
-    o.tile_length_mm = 60;
+    o.tile_pitch_mm = 20;
+    o.tile_length_mm = 10;
     o.heads_mm = 170;
+    o.head_checksums = false;
     test::LinesimProcess line(o);
     test::TempDir dir;
     test::DaemonOptions d;
@@ -183,10 +185,11 @@ TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state sa
     d.render_threads = 1;
     d.queue_tiles = 2;
     test::DaemonProcess daemon(line, dir.path(), d);
-    // 600 x 600 mm at 100 dpi: 2362 px square, far more than one thread renders at 16 tiles/s.
+    // 600 x 600 mm at 200 dpi: 4724 px square (89 MB), far more than one thread renders at 100
+    // tiles/s.
     const auto [status, body] = daemon.request(
         "POST", "/api/jobs",
-        R"({"map":")" TILEJET_TEST_MAP R"(","seed":5,"tiles":12,"tile_mm":"600x600","dpi":100})");
+        R"({"map":")" TILEJET_TEST_MAP R"(","seed":5,"tiles":12,"tile_mm":"600x600","dpi":200})");
     REQUIRE(status == 201);
     // Both are watched while they happen: once rendering catches up the daemon may step the
     // speed back up, so a single look afterwards can miss the slow-down (seen under load).
