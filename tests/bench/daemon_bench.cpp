@@ -175,6 +175,14 @@ void on_the_line(double tile_mm, int dpi, const std::vector<int>& speeds, int ti
         std::printf("  %8d %10.1f %10.1f %10.0f %10.0f %8s %8lld %8d %9ld\n", speed, need, per_min,
                     need / 60 * mpx, per_min / 60 * mpx, slowest < speed ? "yes" : "no",
                     static_cast<long long>(job.value("missed_line_tiles", 0)), late, peak);
+        // Why it had to slow down or stop, as the daemon says it (the first few times).
+        std::istringstream lines(log);
+        int shown = 0;
+        for (std::string line; std::getline(lines, line) && shown < 3;)
+            if (line.find("passed with no separations ready: conveyor slowed") !=
+                    std::string::npos ||
+                line.find("too close") != std::string::npos)
+                std::printf("           %s\n", line.c_str()), ++shown;
         std::fflush(stdout);
     }
 }
