@@ -1,6 +1,9 @@
 #include "tile_renderer.hpp"
 
+#include <sys/mman.h>
+
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,6 +16,25 @@ namespace tilejet::daemon {
 int tile_pixels(double mm, int dpi) {
     return int(std::lround(mm / 25.4 * dpi));
 }
+
+namespace {
+
+// A fresh tile buffer is 289 MB at 600 mm and 360 dpi: faulted in 4 KB pages that is 70 000 page
+// faults, and rendering into fresh memory took 8 times as long as into a recycled buffer. Huge
+// pages (where the kernel has them: transparent huge pages in "madvise" or "always" mode) make
+// it 140. Only the first tiles of a job get fresh buffers; render-ahead recycles them after.
+void reserve_tile_bytes(std::vector<std::uint8_t>& bytes, std::size_t size) {
+    if (bytes.capacity() >= size) return;
+    bytes = {};
+    bytes.reserve(size);
+    constexpr std::uintptr_t kHuge = 2 << 20;
+    const auto begin = (reinterpret_cast<std::uintptr_t>(bytes.data()) + kHuge - 1) & ~(kHuge - 1);
+    const auto end = (reinterpret_cast<std::uintptr_t>(bytes.data()) + size) & ~(kHuge - 1);
+    if (end > begin)
+        ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // a hint only
+}
+
+}  // namespace
 
 colour::ColourSettings job_colour(const jobs::JobSpec& spec, colour::ColourSettings base) {
     if (!spec.profile.empty()) base.output_profile = spec.profile;
@@ -39,7 +61,9 @@ Separations TileRenderer::render(std::int64_t index, int threads,
                                  std::vector<std::uint8_t> buffer) const {
     const synth::Region region = synth::tile_region(seed_, std::uint64_t(index), geometry_);
     Separations s{job_, index, region.width, region.height, std::move(buffer)};
-    s.bytes.resize(size_t(region.width) * size_t(region.height) * 4);
+    const size_t size = size_t(region.width) * size_t(region.height) * 4;
+    reserve_tile_bytes(s.bytes, size);
+    s.bytes.resize(size);
     synth::render_region(*cmyk_map_, seed_, region, s.bytes.data(), size_t(region.width) * 4,
                          threads);
     if (index < preview_tiles_ && !previews_.empty() &&
