@@ -1,8 +1,30 @@
 #include "render_ahead.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 
 namespace tilejet::daemon {
+
+namespace {
+
+// Render threads yield to the print loop, the GPIO and API threads: those are idle most of the
+// time but must run the moment a tile passes (a send in the quiet time before the next tile),
+// while rendering only has to keep the queue full. Measured with tilejet-daemon-bench on the
+// 2-core controller: without it, sends ended too close to a tile's arrival (each a conveyor stop
+// for a resync) at 16000-20000 mm/s; with it, none up to 20000 mm/s.
+constexpr int kRenderNiceness = 10;
+
+void yield_to_the_line() {
+    const pid_t self = ::gettid();
+    errno = 0;
+    const int now = ::getpriority(PRIO_PROCESS, id_t(self));
+    if (errno == 0) ::setpriority(PRIO_PROCESS, id_t(self), now + kRenderNiceness);
+}
+
+}  // namespace
 
 RenderAhead::RenderAhead(int threads, int capacity) : capacity_(std::max(1, capacity)) {
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -80,6 +102,7 @@ std::optional<std::string> RenderAhead::take_error() {
 }
 
 void RenderAhead::work() {
+    yield_to_the_line();
     std::unique_lock lock(mutex_);
     while (true) {
         Key key{};
