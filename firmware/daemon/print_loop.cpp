@@ -379,8 +379,9 @@ void PrintLoop::print_turn() {
     if (conveyor_stopped()) {
         // Nothing can reach the heads: fill them, then start.
         if (render_wait_) {
+            // Half the queue, or what is left of the job if that is less.
             const int need = std::max(1, render_.capacity() / 2);
-            if (render_.ready() < need) {
+            if (render_.ready() < need && !render_.all_ready()) {
                 state_.set(LineStatus::paused, render_reason_ + "; conveyor stopped until " +
                                                    std::to_string(need) + " tiles are rendered");
                 return;

@@ -206,6 +206,38 @@ TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state sa
     CHECK(daemon.log().find("conveyor slowed") != std::string::npos);
 }
 
+TEST_CASE("a job whose last tiles are still rendering when the line stops for them finishes",
+          "[daemon][line][render]") {
+    // Found by the soak: the conveyor, stopped because rendering fell behind, waited for half
+    // the queue to be ready, more tiles than were left in the job.
+    test::LinesimOptions o = line_options();
+    o.speed_mm_s = 2000;
+    o.tile_pitch_mm = 20;
+    o.tile_length_mm = 10;
+    o.heads_mm = 170;
+    o.head_checksums = false;
+    test::LinesimProcess line(o);
+    test::TempDir dir;
+    test::DaemonOptions d;
+    d.speed_mm_s = 2000;
+    d.render_threads = 1;
+    d.queue_tiles = 6;
+    test::DaemonProcess daemon(line, dir.path(), d);
+    // The conveyor starts with 2 tiles in the heads and 6 rendered behind them; at 100 tiles/s
+    // the last 4 of 12 (89 MB each on one thread) cannot be ready in time.
+    const int tiles = 12;
+    const auto [status, body] = daemon.request(
+        "POST", "/api/jobs",
+        R"({"map":")" TILEJET_TEST_MAP R"(","seed":6,"tiles":12,"tile_mm":"600x600","dpi":200})");
+    REQUIRE(status == 201);
+    const auto id = body["id"].get<std::int64_t>();
+    const bool done = test::eventually([&] { return daemon.job(id)["status"] == "done"; }, 40s);
+    INFO(daemon.log());
+    REQUIRE(done);
+    CHECK(daemon.log().find("render behind") != std::string::npos);
+    CHECK(daemon.job(id)["printed"].get<int>() == tiles);
+}
+
 TEST_CASE("SIGHUP reloads the print speed; a broken config is refused and the old one kept",
           "[daemon][line][reload]") {
     test::LinesimProcess line(line_options());
