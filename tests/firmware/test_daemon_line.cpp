@@ -71,6 +71,36 @@ test::LinesimOptions line_options() {
     return o;
 }
 
+// 100 tiles a second, and heads that only count the bytes: with 600 x 600 mm tiles at 200 dpi
+// (4724 px square, 89 MB) on one render thread, rendering is what falls behind.
+test::LinesimOptions render_bound_line_options() {
+    test::LinesimOptions o = line_options();
+    o.speed_mm_s = 2000;
+    o.tile_pitch_mm = 20;
+    o.tile_length_mm = 10;
+    o.heads_mm = 170;
+    o.head_checksums = false;
+    return o;
+}
+
+test::DaemonOptions render_bound_daemon_options(int queue_tiles) {
+    test::DaemonOptions d;
+    d.speed_mm_s = 2000;
+    d.render_threads = 1;
+    d.queue_tiles = queue_tiles;
+    return d;
+}
+
+std::int64_t submit_large_tiles(const test::DaemonProcess& d, int seed, int tiles) {
+    const auto [status, body] = d.request(
+        "POST", "/api/jobs",
+        R"({"map":")" TILEJET_TEST_MAP R"(","seed":)" + std::to_string(seed) + R"(,"tiles":)" +
+            std::to_string(tiles) + R"(,"tile_mm":"600x600","dpi":200})");
+    INFO(body.dump());
+    REQUIRE(status == 201);
+    return body.at("id").get<std::int64_t>();
+}
+
 }  // namespace
 
 TEST_CASE("a job prints every tile exactly once with the offline render's bytes",
@@ -171,26 +201,10 @@ TEST_CASE("a Modbus link drop mid-run ends with every tile printed exactly once"
 
 TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state says why",
           "[daemon][line][render]") {
-    // 100 tiles a second, and heads that only count the bytes: rendering is what falls behind.
-    test::LinesimOptions o = line_options();
-    o.speed_mm_s = 2000;
-    o.tile_pitch_mm = 20;
-    o.tile_length_mm = 10;
-    o.heads_mm = 170;
-    o.head_checksums = false;
-    test::LinesimProcess line(o);
+    test::LinesimProcess line(render_bound_line_options());
     test::TempDir dir;
-    test::DaemonOptions d;
-    d.speed_mm_s = 2000;
-    d.render_threads = 1;
-    d.queue_tiles = 2;
-    test::DaemonProcess daemon(line, dir.path(), d);
-    // 600 x 600 mm at 200 dpi: 4724 px square (89 MB), far more than one thread renders at 100
-    // tiles/s.
-    const auto [status, body] = daemon.request(
-        "POST", "/api/jobs",
-        R"({"map":")" TILEJET_TEST_MAP R"(","seed":5,"tiles":12,"tile_mm":"600x600","dpi":200})");
-    REQUIRE(status == 201);
+    test::DaemonProcess daemon(line, dir.path(), render_bound_daemon_options(2));
+    submit_large_tiles(daemon, 5, 12);
     // Both are watched while they happen: once rendering catches up the daemon may step the
     // speed back up, so a single look afterwards can miss the slow-down (seen under load).
     bool reason_seen = false, slowed = false;
@@ -210,27 +224,13 @@ TEST_CASE("a job whose last tiles are still rendering when the line stops for th
           "[daemon][line][render]") {
     // Found by the soak: the conveyor, stopped because rendering fell behind, waited for half
     // the queue to be ready, more tiles than were left in the job.
-    test::LinesimOptions o = line_options();
-    o.speed_mm_s = 2000;
-    o.tile_pitch_mm = 20;
-    o.tile_length_mm = 10;
-    o.heads_mm = 170;
-    o.head_checksums = false;
-    test::LinesimProcess line(o);
+    test::LinesimProcess line(render_bound_line_options());
     test::TempDir dir;
-    test::DaemonOptions d;
-    d.speed_mm_s = 2000;
-    d.render_threads = 1;
-    d.queue_tiles = 6;
-    test::DaemonProcess daemon(line, dir.path(), d);
+    test::DaemonProcess daemon(line, dir.path(), render_bound_daemon_options(6));
     // The conveyor starts with 2 tiles in the heads and 6 rendered behind them; at 100 tiles/s
-    // the last 4 of 12 (89 MB each on one thread) cannot be ready in time.
+    // the last 4 of 12 cannot be ready in time.
     const int tiles = 12;
-    const auto [status, body] = daemon.request(
-        "POST", "/api/jobs",
-        R"({"map":")" TILEJET_TEST_MAP R"(","seed":6,"tiles":12,"tile_mm":"600x600","dpi":200})");
-    REQUIRE(status == 201);
-    const auto id = body["id"].get<std::int64_t>();
+    const auto id = submit_large_tiles(daemon, 6, tiles);
     const bool done = test::eventually([&] { return daemon.job(id)["status"] == "done"; }, 40s);
     INFO(daemon.log());
     REQUIRE(done);
