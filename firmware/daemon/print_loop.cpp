@@ -380,8 +380,8 @@ void PrintLoop::print_turn() {
         // Nothing can reach the heads: fill them, then start.
         if (render_wait_) {
             // Half the queue, or what is left of the job if that is less.
-            const int need = std::max(1, render_.capacity() / 2);
-            if (render_.ready() < need && !render_.all_ready()) {
+            const int need = std::min(std::max(1, render_.capacity() / 2), render_.wanted());
+            if (render_.ready() < need) {
                 state_.set(LineStatus::paused, render_reason_ + "; conveyor stopped until " +
                                                    std::to_string(need) + " tiles are rendered");
                 return;
@@ -397,7 +397,7 @@ void PrintLoop::print_turn() {
         // The queue behind the heads must be full too before anything moves: a job's first
         // tiles render into fresh memory, slower than a fast line takes them, and a tile that
         // passes with nothing ready slows the conveyor for many tiles after.
-        if (!render_.all_ready()) {
+        if (render_.ready() < render_.wanted()) {
             state_.set(LineStatus::ready, "rendering ahead before the conveyor starts");
             return;
         }

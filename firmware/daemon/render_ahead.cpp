@@ -82,13 +82,9 @@ int RenderAhead::ready() const {
     return n;
 }
 
-bool RenderAhead::all_ready() const {
+int RenderAhead::wanted() const {
     std::lock_guard lock(mutex_);
-    for (const Key& k : wanted_) {
-        auto it = slots_.find(k);
-        if (it == slots_.end() || !it->second.tile) return false;
-    }
-    return true;
+    return int(wanted_.size());
 }
 
 void RenderAhead::recycle(Separations&& tile) {

@@ -32,8 +32,8 @@ class RenderAhead {
     std::optional<Separations> take(std::int64_t job, std::int64_t index);
     // How many of the wanted tiles are ready.
     int ready() const;
-    // Whether every wanted tile is ready (true when none is wanted).
-    bool all_ready() const;
+    // How many tiles are wanted (at most `capacity`).
+    int wanted() const;
     int capacity() const { return capacity_; }
     // A sent tile's bytes, kept to render a later tile into (at most `capacity` are kept).
     void recycle(Separations&& tile);
