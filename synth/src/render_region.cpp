@@ -34,7 +34,8 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
     const size_t row_bytes = size_t(px_bytes * region.width);
 
     // The band's patches once (the cell walk costs too much to repeat per strip), each filed
-    // under the first strip it reaches.
+    // under the first strip it reaches by a counting sort: std::sort on the strip number made a
+    // 600 mm, 360 dpi tile 4-8 ms slower (tilejet-daemon-bench).
     struct Shown {
         const Patch* patch;
         int64_t x, y;
