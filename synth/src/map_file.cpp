@@ -29,6 +29,9 @@ constexpr uint32_t kFlagZlib = 1;
 constexpr uint32_t kMaxSections = 4096;
 constexpr uint32_t kMaxRawSection = 256u << 20;
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
+constexpr int kMaxCornerColours = 4;
+constexpr uint32_t kMaxCellImages =
+    kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxCornerColours;
 
 // Fuzzing builds skip the checksums and the id check, so that mutated files reach the parser and
 // the checks behind it (patch bounds, diamonds) instead of stopping at the first CRC.
@@ -204,6 +207,13 @@ std::vector<Section> content_sections(const TextureMap& map) {
         w.f64(map.build.active_per_cell);
         out.push_back({"META", 0, std::move(w.bytes)});
     }
+    // Only sets carry it, so that maps of one cell image keep the content, and so the id, that
+    // they had before cell sets.
+    if (map.corner_colours > 1) {
+        Writer w;
+        w.le<uint32_t>(uint32_t(map.corner_colours));
+        out.push_back({"CSET", 0, std::move(w.bytes)});
+    }
     {
         Writer w;
         write_image(w, map.source);
@@ -221,6 +231,7 @@ std::vector<Section> content_sections(const TextureMap& map) {
         out.push_back({"OVLA", uint32_t(t), std::move(oa.bytes)});
         out.push_back({"OVLB", uint32_t(t), std::move(ob.bytes)});
     }
+
     return out;
 }
 
@@ -368,9 +379,9 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (cw < 8 || ch < 8 || cw > uint32_t(kMaxCellSide) || ch > uint32_t(kMaxCellSide))
             r.fail("cell size " + std::to_string(cw) + "x" + std::to_string(ch) +
                    " is out of range");
-        if (images != 1)
-            r.fail("holds " + std::to_string(images) +
-                   " cell images; this tilejet renders maps with exactly one");
+        if (images == 0 || images > kMaxCellImages)
+            r.fail("cell image count " + std::to_string(images) + " is out of range (1 to " +
+                   std::to_string(kMaxCellImages) + ")");
         map.cell_width = int(cw), map.cell_height = int(ch);
         map.build.seed = r.le<uint64_t>("build seed");
         map.build.exemplar_width = int(r.le<uint32_t>("exemplar width"));
@@ -379,6 +390,18 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         map.build.candidates = int(r.le<uint32_t>("candidates"));
         map.build.active_per_cell = r.f64("active patches per cell");
         r.done();
+    }
+    if (raw.count({"CSET", 0}) || images != 1) {
+        Reader r = section("CSET", 0);
+        const auto k = r.le<uint32_t>("corner colours");
+        r.done();
+        if (k < 2 || k > uint32_t(kMaxCornerColours))
+            r.fail("corner colours " + std::to_string(k) + " is out of range (2 to " +
+                   std::to_string(kMaxCornerColours) + ")");
+        if (uint64_t(k) * k * k * k != images)
+            r.fail(std::to_string(k) + " corner colours need " + std::to_string(k * k * k * k) +
+                   " cell images, the map holds " + std::to_string(images));
+        map.corner_colours = int(k);
     }
     {
         Reader r = section("SRCE", 0);
@@ -400,6 +423,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         oa.done(), ob.done();
         map.cell_images.push_back(std::move(c));
     }
+
     {
         Reader r = section("IDNT", 0);
         auto id = r.take(32, "map id");

@@ -3,6 +3,7 @@
 #include <thread>
 #include <vector>
 
+#include "corner_colours.hpp"
 #include "diamond.hpp"
 #include "plane_limits.hpp"
 #include "shown_patches.hpp"
@@ -28,7 +29,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
                  uint8_t* rgb, size_t stride) {
     const CellGrid grid(map.cell_width, map.cell_height);
     const int64_t cw = grid.cell_width(), ch = grid.cell_height();
-    const CellImage& image = map.cell_images.front();
+    const detail::CornerColours colours(map, seed);
     const int64_t px_bytes = int64_t(map.source.elemSize());  // 3 for RGB, 4 for CMYK
     const int64_t x0 = region.x, x1 = region.x + region.width;
     const size_t row_bytes = size_t(px_bytes * region.width);
@@ -63,18 +64,35 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
             filed[next[first_strip(s)]++] = s;
     }
 
+    // The cell images of the band's cells, a row of cells at a time: the vertex hashes cost
+    // too much to repeat per pixel row.
+    const int64_t first_column = detail::floor_div(x0, cw);
+    const size_t columns = size_t(detail::floor_div(x1 - 1, cw) - first_column + 1);
+    std::vector<const cv::Mat*> row_images(columns);
+    int64_t images_row = 0;
+    bool images_valid = false;
+
     std::vector<uint8_t> strip(size_t(strip_rows) * row_bytes);
     std::vector<Shown> reaching;  // patches that reach the current strip, and maybe beyond
     for (int k = 0; k < strips; ++k) {
         const int s0 = row0 + k * strip_rows, s1 = std::min(row1, s0 + strip_rows);
         const int64_t y0 = region.y + s0, y1 = region.y + s1;
         for (int64_t y = y0; y < y1; ++y) {
-            const uint8_t* cell_row = image.rgb.ptr<uint8_t>(int(floor_mod(y, ch)));
+            const int64_t cell_j = detail::floor_div(y, ch);
+            if (!images_valid || cell_j != images_row) {
+                for (size_t c = 0; c < columns; ++c)
+                    row_images[c] =
+                        &map.cell_images[colours.image(first_column + int64_t(c), cell_j)].rgb;
+                images_row = cell_j, images_valid = true;
+            }
+            const int cell_y = int(y - cell_j * ch);
             uint8_t* dst = strip.data() + size_t(y - y0) * row_bytes;
             int64_t offset = floor_mod(x0, cw);
-            for (int64_t left = region.width; left > 0;) {
+            size_t column = 0;
+            for (int64_t left = region.width; left > 0; ++column) {
                 const int64_t n = std::min(cw - offset, left);
-                std::memcpy(dst, cell_row + px_bytes * offset, size_t(px_bytes * n));
+                std::memcpy(dst, row_images[column]->ptr<uint8_t>(cell_y) + px_bytes * offset,
+                            size_t(px_bytes * n));
                 dst += px_bytes * n, left -= n, offset = 0;
             }
         }

@@ -1,6 +1,7 @@
 #include "tilejet/synth/sampler.hpp"
 
 #include "active_set.hpp"
+#include "corner_colours.hpp"
 #include "diamond.hpp"
 #include "plane_limits.hpp"
 
@@ -8,11 +9,16 @@ namespace tilejet::synth {
 
 using detail::CellGrid;
 
+uint32_t cell_image_index(const TextureMap& map, uint64_t seed, CellIndex cell) {
+    return detail::CornerColours(map, seed).image(cell.i, cell.j);
+}
+
 std::vector<uint16_t> active_patches(const TextureMap& map, uint64_t seed, CellType type,
                                      CellIndex cell) {
     std::vector<uint16_t> active;
     const uint64_t key = detail::cell_key(map.id64(), seed, 0, type, cell.i, cell.j);
-    detail::compute_active_set(map.cell_images.front().set(type), key, active);
+    const CellImage& image = map.cell_images[cell_image_index(map, seed, cell)];
+    detail::compute_active_set(image.set(type), key, active);
     return active;
 }
 
@@ -22,18 +28,23 @@ CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t 
 
 Sampler::Sampler(const TextureMap& map, uint64_t seed) : map_(map), seed_(seed) {}
 
-const std::vector<uint16_t>& Sampler::active(CellType type, CellIndex cell) {
+const CellImage& Sampler::image_of(CellIndex cell) const {
+    return map_.cell_images[detail::CornerColours(map_, seed_).image(cell.i, cell.j)];
+}
+
+const Sampler::Memo& Sampler::memo(CellType type, CellIndex cell) {
     const size_t slot = size_t((uint64_t(cell.i) * 0x9e3779b97f4a7c15ull ^ uint64_t(cell.j)) *
                                    0xff51afd7ed558ccdull >>
                                58);
     Memo& memo = memo_[size_t(type)][slot];
     if (!memo.valid || !(memo.cell == cell)) {
         const uint64_t key = detail::cell_key(map_.id64(), seed_, 0, type, cell.i, cell.j);
-        detail::compute_active_set(map_.cell_images.front().set(type), key, memo.active);
+        memo.image = &image_of(cell);
+        detail::compute_active_set(memo.image->set(type), key, memo.active);
         memo.cell = cell;
         memo.valid = true;
     }
-    return memo.active;
+    return memo;
 }
 
 Rgb Sampler::sample(int64_t x, int64_t y) {
@@ -44,17 +55,16 @@ Rgb Sampler::sample(int64_t x, int64_t y) {
 const uint8_t* Sampler::pixel(int64_t x, int64_t y) {
     detail::check_plane_point(x, y);
     const CellGrid grid(map_.cell_width, map_.cell_height);
-    const CellImage& image = map_.cell_images.front();
     CellIndex cells[2];
     grid.cells(x, y, cells[0], cells[1]);
     for (CellType type : {CellType::A, CellType::B}) {
         const CellIndex cell = cells[size_t(type)];
         // Neighbouring pixels mostly share their cells: skip the memo lookup then.
         Current& current = current_[size_t(type)];
-        if (!current.active || !(current.cell == cell)) current = {cell, &active(type, cell)};
-        const PatchSet& set = image.set(type);
+        if (!current.memo || !(current.cell == cell)) current = {cell, &memo(type, cell)};
+        const PatchSet& set = current.memo->image->set(type);
         const int64_t px = x - cell.i * grid.cell_width(), py = y - cell.j * grid.cell_height();
-        for (uint16_t k : *current.active) {
+        for (uint16_t k : current.memo->active) {
             const Patch& p = set.patches[k];
             const int64_t bx = px - p.x, by = py - p.y;
             if (bx < 0 || by < 0 || bx >= p.width || by >= p.height) continue;
@@ -63,8 +73,15 @@ const uint8_t* Sampler::pixel(int64_t x, int64_t y) {
                    map_.source.elemSize() * size_t(p.src_x + bx);
         }
     }
-    return image.rgb.ptr<uint8_t>(int(detail::floor_mod(y, grid.cell_height()))) +
-           image.rgb.elemSize() * size_t(detail::floor_mod(x, grid.cell_width()));
+    return background(x, y);
+}
+
+const uint8_t* Sampler::background(int64_t x, int64_t y) {
+    const int64_t cw = map_.cell_width, ch = map_.cell_height;
+    const CellIndex cell{detail::floor_div(x, cw), detail::floor_div(y, ch)};
+    if (!background_.image || !(background_.cell == cell)) background_ = {cell, &image_of(cell)};
+    const cv::Mat& rgb = background_.image->rgb;
+    return rgb.ptr<uint8_t>(int(y - cell.j * ch)) + rgb.elemSize() * size_t(x - cell.i * cw);
 }
 
 }  // namespace tilejet::synth

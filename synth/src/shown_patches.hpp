@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "active_set.hpp"
+#include "corner_colours.hpp"
 #include "diamond.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
@@ -21,15 +22,15 @@ template <typename OnPatch>
 void for_each_shown_patch(const TextureMap& map, uint64_t seed, int64_t x0, int64_t x1, int64_t y0,
                           int64_t y1, OnPatch&& on_patch) {
     const int64_t cw = map.cell_width, ch = map.cell_height;
-    const CellImage& image = map.cell_images.front();
+    const CornerColours colours(map, seed);
     const uint64_t map_id = map.id64();
     std::vector<uint16_t> active;
     for (CellType type : {CellType::A, CellType::B}) {
-        const PatchSet& set = image.set(type);
         // A diamond reaches at most one cell size beyond its cell on every side.
         for (int64_t j = floor_div(y0, ch) - 1; j <= floor_div(y1 - 1, ch) + 1; ++j) {
             for (int64_t i = floor_div(x0, cw) - 1; i <= floor_div(x1 - 1, cw) + 1; ++i) {
                 if (((i + j) & 1) != int64_t(type)) continue;
+                const PatchSet& set = map.cell_images[colours.image(i, j)].set(type);
                 compute_active_set(set, cell_key(map_id, seed, 0, type, i, j), active);
                 for (uint16_t k : active) {
                     const Patch& p = set.patches[k];

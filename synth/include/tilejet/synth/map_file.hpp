@@ -21,7 +21,7 @@ class MapFileError : public SynthError {
     using SynthError::SynthError;
 };
 
-inline constexpr uint32_t kMapFormatVersion = 1;
+inline constexpr uint32_t kMapFormatVersion = 2;  // 2: corner-coloured cell sets (CSET)
 
 // Computes and sets map.id from the map's content.
 void assign_map_id(TextureMap& map);

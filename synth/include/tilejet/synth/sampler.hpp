@@ -45,9 +45,12 @@ class Sampler {
     struct Memo {
         bool valid = false;
         CellIndex cell;
+        const CellImage* image = nullptr;
         std::vector<uint16_t> active;
     };
-    const std::vector<uint16_t>& active(CellType type, CellIndex cell);
+    const Memo& memo(CellType type, CellIndex cell);
+    const CellImage& image_of(CellIndex cell) const;
+    const uint8_t* background(int64_t x, int64_t y);  // the cell image's pixel
 
     const TextureMap& map_;
     uint64_t seed_;
@@ -55,13 +58,21 @@ class Sampler {
     Memo memo_[2][kMemoSlots];
     struct Current {
         CellIndex cell;
-        const std::vector<uint16_t>* active = nullptr;  // into memo_
+        const Memo* memo = nullptr;  // into memo_
     };
     Current current_[2];
+    struct Background {  // the cell whose image shows where no patch does
+        CellIndex cell;
+        const CellImage* image = nullptr;
+    };
+    Background background_;
 };
 
+// The cell image cell (i, j) shows for this seed: by its corners' colours (corner_colours.hpp).
+uint32_t cell_image_index(const TextureMap& map, uint64_t seed, CellIndex cell);
+
 // The patches of `type` shown in cell `cell` for this seed: activated by hash, then overlaps
-// removed. Indices into the cell image's PatchSet, ascending.
+// removed. Indices into the PatchSet of the cell's image, ascending.
 std::vector<uint16_t> active_patches(const TextureMap& map, uint64_t seed, CellType type,
                                      CellIndex cell);
 

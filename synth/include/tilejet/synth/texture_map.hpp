@@ -27,9 +27,11 @@ struct Patch {
     int x = 0, y = 0;           // bounding box top-left, cell coordinates
     int width = 0, height = 0;  // bounding box size
     int src_x = 0, src_y = 0;   // source pixel shown at the bounding box's top-left
-    float seam_cost = 0;        // largest single edge cost along the patch's cut (lower is better)
-    std::vector<uint8_t> bits;  // row-major, one bit per pixel, each row padded to whole bytes
-    std::vector<MaskRun> runs;  // derived from bits, sorted by row
+    // Cost of the patch's cut, lower is better: its largest single edge cost, or in a cell set
+    // the mean edge cost along it (candidate_patch.hpp).
+    float seam_cost = 0;
+    std::vector<uint8_t> bits;       // row-major, one bit per pixel, each row padded to whole bytes
+    std::vector<MaskRun> runs;       // derived from bits, sorted by row
     std::vector<uint32_t> row_runs;  // runs of row r are [row_runs[r], row_runs[r + 1])
 
     int row_bytes() const { return (width + 7) / 8; }
@@ -55,8 +57,10 @@ struct PatchSet {
 
 enum class CellType : uint8_t { A = 0, B = 1 };
 
-// A seamless, toroidally wrapping image of one cell's size with its own two patch sets.
-// Today a map holds one; the format and sampler keep room for a Wang set (design.md section 9).
+// An image of one cell's size with its own two patch sets. A map holds one, which wraps
+// toroidally, or a corner-coloured set (design.md section 9, cell_set.hpp): one image for each
+// combination of its four corners' colours, any two of which meet seamlessly where their
+// shared corners agree.
 struct CellImage {
     cv::Mat rgb;  // CV_8UC3, R,G,B byte order (CV_8UC4 C,M,Y,K once converted for a line)
     PatchSet a, b;
@@ -74,6 +78,10 @@ struct BuildRecord {
 
 struct TextureMap {
     int cell_width = 0, cell_height = 0;
+    // K: every lattice vertex gets one of K colours by hash, and the cell image of a cell is
+    // the one made for its corners' colours, cell_images[tl + K tr + K^2 bl + K^3 br]. K = 1:
+    // one cell image everywhere (the maps of format version 1 and earlier).
+    int corner_colours = 1;
     cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
     std::vector<CellImage> cell_images;
     BuildRecord build;
