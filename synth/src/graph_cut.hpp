@@ -1,0 +1,25 @@
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+namespace tilejet::synth::detail {
+
+// What a pixel of a graph-cut window must show, or whether the cut decides.
+enum class Pin : uint8_t { Free, New, Old };
+
+struct Cut {
+    std::vector<uint8_t> take_new;  // per window pixel, row-major: 1 where the new image shows
+    double mean_cost = 0;           // mean edge cost along the cut
+    float max_cost = 0;             // largest single edge cost along the cut
+    size_t taken = 0;               // pixels that show the new image
+};
+
+// The min-cut (Boykov-Kolmogorov max-flow, OpenCV's GCGraph) between an old and a new image of
+// the same window, CIELab CV_32FC3 both (Kwatra et al. 2003): the edge between neighbours s, t
+// costs |old(s) - new(s)| + |old(t) - new(t)|, so the seam runs where the two agree.
+// `pins` (one per pixel, row-major) force pixels to either side.
+Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins);
+
+}  // namespace tilejet::synth::detail

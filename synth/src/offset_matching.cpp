@@ -1,0 +1,32 @@
+#include "offset_matching.hpp"
+
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <vector>
+
+namespace tilejet::synth::detail {
+
+std::optional<cv::Point> match_offset(const OffsetSearch& search, const cv::Mat& old_lab,
+                                      const cv::Mat& mask, Rng& rng) {
+    const cv::Mat& src = search.source_lab;
+    if (src.cols < old_lab.cols || src.rows < old_lab.rows) return std::nullopt;
+    cv::Mat costs;  // (W - w + 1) x (H - h + 1), CV_32F
+    cv::matchTemplate(src, old_lab, costs, cv::TM_SQDIFF, mask);
+    float best = std::numeric_limits<float>::max();
+    for (int y = 0; y < costs.rows; ++y)
+        for (int x = 0; x < costs.cols; ++x)
+            if (costs.at<float>(y, x) < best && (!search.allowed || search.allowed({x, y})))
+                best = costs.at<float>(y, x);
+    if (best == std::numeric_limits<float>::max()) return std::nullopt;
+    // The FFT leaves rounding noise around zero; a floor keeps "within 10%" meaningful there.
+    const float limit = best * float(1 + search.tolerance) + 1e-3f * float(cv::sum(mask)[0]);
+    std::vector<cv::Point> near;
+    for (int y = 0; y < costs.rows; ++y)
+        for (int x = 0; x < costs.cols; ++x)
+            if (costs.at<float>(y, x) <= limit && (!search.allowed || search.allowed({x, y})))
+                near.push_back({x, y});
+    return near[size_t(rng.below(near.size()))];
+}
+
+}  // namespace tilejet::synth::detail
