@@ -34,6 +34,18 @@ synth::BuildProgress terminal_progress() {
     };
 }
 
+struct PatchCounts {
+    size_t a = 0, b = 0;
+};
+
+// Over all cell images: each has its own A and B sets.
+PatchCounts count_patches(const synth::TextureMap& map) {
+    PatchCounts counts;
+    for (const synth::CellImage& image : map.cell_images)
+        counts.a += image.a.size(), counts.b += image.b.size();
+    return counts;
+}
+
 void run_build(const BuildOptions& o) {
     const auto start = std::chrono::steady_clock::now();
     const cv::Mat exemplar = synth::load_exemplar(o.exemplar);
@@ -41,23 +53,27 @@ void run_build(const BuildOptions& o) {
     synth::save_texture_map(map, o.output);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("wrote %s: map %s, cell %dx%d, %zu A + %zu B patches, %ju bytes, %.1f s\n",
-                o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.cell_width,
-                map.cell_height, map.cell_images.front().a.size(), map.cell_images.front().b.size(),
-                uintmax_t(std::filesystem::file_size(o.output)), seconds);
+    const PatchCounts counts = count_patches(map);
+    std::printf(
+        "wrote %s: map %s, cell %dx%d, %zu cell images (%d corner colours), %zu A + %zu B "
+        "patches, %ju bytes, %.1f s\n",
+        o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.cell_width, map.cell_height,
+        map.cell_images.size(), map.corner_colours, counts.a, counts.b,
+        uintmax_t(std::filesystem::file_size(o.output)), seconds);
 }
 
 void run_info(const std::string& path) {
     const synth::TextureMap map = synth::load_texture_map(path);
-    const synth::CellImage& image = map.cell_images.front();
+    const PatchCounts counts = count_patches(map);
     nlohmann::ordered_json j;
     j["map_id"] = map.id_hex();
     j["format_version"] = synth::kMapFormatVersion;
     j["cell_width"] = map.cell_width;
     j["cell_height"] = map.cell_height;
     j["cell_images"] = map.cell_images.size();
-    j["patches_a"] = image.a.size();
-    j["patches_b"] = image.b.size();
+    j["corner_colours"] = map.corner_colours;
+    j["patches_a"] = counts.a;  // over all cell images
+    j["patches_b"] = counts.b;
     j["source_width"] = map.source.cols;
     j["source_height"] = map.source.rows;
     j["bytes"] = std::filesystem::file_size(path);
@@ -81,9 +97,14 @@ void add_map_commands(CLI::App& app) {
     b->add_option("EXEMPLAR", build->exemplar, "PNG, JPEG or TIFF exemplar")->required();
     b->add_option("-o,--output", build->output, "texture map file to write")->required();
     b->add_option("--cell", build->params.cell_size, "cell size in px (default 128)");
-    b->add_option("--patches", build->params.patches, "patches kept (default 600)");
+    b->add_option("--corner-colours", build->params.corner_colours,
+                  "corner colours K: K^4 cell images that meet seamlessly whatever the hash "
+                  "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
+                  "(default 3)");
+    b->add_option("--patches", build->params.patches,
+                  "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,
-                  "candidate patches searched (default 40 per patch)");
+                  "candidate patches searched per cell image (default 40 per patch, 8 in a set)");
     b->add_option("--active", build->params.active_per_cell,
                   "expected active patches per cell, eta * |set| (default 10)");
     b->add_option("--seed", build->params.seed, "build seed (default 1)");

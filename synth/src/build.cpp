@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "candidate_patch.hpp"
+#include "cell_set.hpp"
 #include "lab.hpp"
 #include "lattice_alignment.hpp"
 #include "mix64.hpp"
@@ -31,6 +32,9 @@ using namespace detail;
 
 constexpr int kDefaultCellSize = 128;
 constexpr int kCandidatesPerPatch = 40;
+constexpr int kDefaultPatches = 600;
+constexpr int kDefaultPatchesPerSetImage = 32;
+constexpr int kCandidatesPerSetPatch = 8;
 
 // Stream ids keep the random draws of each build stage independent of one another.
 enum Stream : uint64_t { kCellStream = 1, kSourceStream, kCandidateStream, kSplitStream };
@@ -40,8 +44,11 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
     if (p.cell_size != 0 && (p.cell_size < 16 || p.cell_size > smaller))
         throw SynthError("--cell " + std::to_string(p.cell_size) + " must be between 16 and " +
                          std::to_string(smaller) + " (the exemplar's smaller side)");
-    if (p.patches < 2 || p.patches > 65535)
+    if (p.patches != 0 && (p.patches < 2 || p.patches > 65535))
         throw SynthError("--patches " + std::to_string(p.patches) + " must be between 2 and 65535");
+    if (p.corner_colours < 1 || p.corner_colours > 4)
+        throw SynthError("--corner-colours " + std::to_string(p.corner_colours) +
+                         " must be between 1 and 4");
     if (p.candidates != 0 && p.candidates < p.patches)
         throw SynthError("--candidates " + std::to_string(p.candidates) +
                          " must be at least --patches (" + std::to_string(p.patches) + ")");
@@ -188,6 +195,48 @@ cv::Mat quilt_cell_image(const cv::Mat& exemplar, const cv::Mat& exemplar_lab, c
     return best;
 }
 
+// The 3 x 3 cells around a lone cell image that wraps: what every cell of a one-image map has
+// around it.
+cv::Mat tiled_neighbourhood(const cv::Mat& cell) {
+    cv::Mat out;
+    cv::repeat(cell, 3, 3, out);
+    return out;
+}
+
+// One cell image's own A and B patch sets: the best candidates cut against what the plane
+// shows around the image, split so that no A patch meets a B patch in any neighbour placement.
+void make_patch_sets(CellImage& image, const CandidateSpace& space, const BuildParams& params,
+                     int patches, int candidates, int threads, const BuildProgress& progress) {
+    BuildParams per_image = params;
+    per_image.patches = patches;
+    const std::vector<Patch> kept =
+        best_candidates(space, per_image, candidates, threads, progress);
+
+    // Which pairs may not be split across A and B: a B cell sits left, right, above or below
+    // every A cell, so a conflict is an overlap in any of those four placements.
+    const int cw = int(space.grid.cell_width()), ch = int(space.grid.cell_height());
+    const size_t n = kept.size();
+    std::vector<uint8_t> conflict(n * n, 0);
+    parallel_for(
+        n, threads,
+        [&](size_t u, int) {
+            for (size_t v = 0; v < n; ++v)
+                conflict[u * n + v] = patches_overlap(kept[u], kept[v], cw, 0) ||
+                                      patches_overlap(kept[u], kept[v], -cw, 0) ||
+                                      patches_overlap(kept[u], kept[v], 0, ch) ||
+                                      patches_overlap(kept[u], kept[v], 0, -ch);
+        },
+        progress, "A/B conflicts");
+    Rng split_rng(hash_combine(params.seed, kSplitStream));
+    const BicliqueSplit split = split_pseudo_biclique(n, conflict, split_rng);
+    if (split.a.empty() || split.b.empty())
+        throw SynthError(
+            "could not split the patches into two non-overlapping sets; "
+            "try more --patches or a larger --cell");
+    image.a = make_set(kept, split.a, params.active_per_cell);
+    image.b = make_set(kept, split.b, params.active_per_cell);
+}
+
 }  // namespace
 
 TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
@@ -199,8 +248,16 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     const int square = params.cell_size
                            ? params.cell_size
                            : std::min(kDefaultCellSize, std::min(input.cols, input.rows));
+    const int corner_colours = params.corner_colours;
+    // A set shares the plane out among many cell images: fewer patches each, searched less
+    // widely, keep the build within a minute for a 512 px exemplar.
+    const int patches = params.patches
+                            ? params.patches
+                            : (corner_colours == 1 ? kDefaultPatches : kDefaultPatchesPerSetImage);
     const int candidates =
-        params.candidates ? params.candidates : kCandidatesPerPatch * params.patches;
+        params.candidates
+            ? params.candidates
+            : (corner_colours == 1 ? kCandidatesPerPatch : kCandidatesPerSetPatch) * patches;
 
     // Near-regular exemplars get cells whose sides are lattice vectors, so that every cell
     // starts on the same phase of the pattern, and copies that move by lattice translations.
@@ -228,15 +285,12 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     TextureMap map;
     map.cell_width = cell_size.width;
     map.cell_height = cell_size.height;
-    map.build = {params.seed,    exemplar.cols, exemplar.rows,
-                 params.patches, candidates,    params.active_per_cell};
+    map.build = {params.seed, exemplar.cols, exemplar.rows,
+                 patches,     candidates,    params.active_per_cell};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,
                             lattice ? &*lattice : nullptr};
-    if (progress) progress("cell image", 0, 1);
-    CellImage image;
-    image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell_size, quilt, params.seed);
 
     // Patches need room around them in the source; small exemplars are enlarged first.
     if (exemplar.cols < 2 * cell_size.width || exemplar.rows < 2 * cell_size.height) {
@@ -263,42 +317,56 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     } else {
         map.source = exemplar.clone();
     }
-
-    const cv::Mat cell_lab = to_lab(image.rgb), source_lab = to_lab(map.source);
+    const cv::Mat source_lab = to_lab(map.source);
     const int source_side = std::min(map.source.cols, map.source.rows);
-    CandidateSpace space{cell_lab,
-                         source_lab,
-                         CellGrid(cell_size.width, cell_size.height),
-                         2,
-                         std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3)),
-                         lattice ? &*lattice : nullptr};
-    const std::vector<Patch> kept = best_candidates(space, params, candidates, threads, progress);
+    const CellGrid grid(cell_size.width, cell_size.height);
 
-    // Which pairs may not be split across A and B: a B cell sits left, right, above or below
-    // every A cell, so a conflict is an overlap in any of those four placements.
-    const size_t n = kept.size();
-    std::vector<uint8_t> conflict(n * n, 0);
-    parallel_for(
-        n, threads,
-        [&](size_t u, int) {
-            const int cw = cell_size.width, ch = cell_size.height;
-            for (size_t v = 0; v < n; ++v)
-                conflict[u * n + v] = patches_overlap(kept[u], kept[v], cw, 0) ||
-                                      patches_overlap(kept[u], kept[v], -cw, 0) ||
-                                      patches_overlap(kept[u], kept[v], 0, ch) ||
-                                      patches_overlap(kept[u], kept[v], 0, -ch);
-        },
-        progress, "A/B conflicts");
-    Rng split_rng(hash_combine(params.seed, kSplitStream));
-    const BicliqueSplit split = split_pseudo_biclique(n, conflict, split_rng);
-    if (split.a.empty() || split.b.empty())
-        throw SynthError(
-            "could not split the patches into two non-overlapping sets; "
-            "try more --patches or a larger --cell");
-
-    image.a = make_set(kept, split.a, params.active_per_cell);
-    image.b = make_set(kept, split.b, params.active_per_cell);
-    map.cell_images.push_back(std::move(image));
+    if (corner_colours == 1) {
+        if (progress) progress("cell image", 0, 1);
+        CellImage image;
+        image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell_size, quilt, params.seed);
+        const cv::Mat canvas = to_lab(tiled_neighbourhood(image.rgb));
+        const CandidateSpace space{canvas,
+                                   {cell_size.width, cell_size.height},
+                                   source_lab,
+                                   grid,
+                                   2,
+                                   std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3)),
+                                   lattice ? &*lattice : nullptr,
+                                   {},
+                                   false};
+        make_patch_sets(image, space, params, patches, candidates, threads, progress);
+        map.cell_images.push_back(std::move(image));
+    } else {
+        if (progress) progress("cell set", 0, 1);
+        const CellSet set(
+            map.source, source_lab,
+            {cell_size, corner_colours, params.seed, threads, lattice ? &*lattice : nullptr});
+        map.corner_colours = corner_colours;
+        // Patches as large as a third of the cell where their seams are good: the size classes
+        // of best_candidates keep the large ones that fit.
+        const int max_radius = std::max(2, std::min(cell / 3, (source_side / 2 - 2) * 2 / 3));
+        for (size_t m = 0; m < set.size(); ++m) {
+            if (progress) progress("cell images", m, set.size());
+            CellImage image;
+            image.rgb = set.image(m).clone();
+            const cv::Mat canvas = to_lab(set.neighbourhood(m));
+            const CandidateSpace space{canvas,
+                                       {cell_size.width, cell_size.height},
+                                       source_lab,
+                                       grid,
+                                       2,
+                                       max_radius,
+                                       lattice ? &*lattice : nullptr,
+                                       [&set](int x, int y) { return set.exact_near_cell(x, y); },
+                                       true};
+            BuildParams per_image = params;
+            per_image.seed = hash_combine(params.seed, m);
+            make_patch_sets(image, space, per_image, patches, candidates, threads, {});
+            map.cell_images.push_back(std::move(image));
+        }
+        if (progress) progress("cell images", set.size(), set.size());
+    }
     assign_map_id(map);
     return map;
 }

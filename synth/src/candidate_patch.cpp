@@ -33,8 +33,11 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     const int R = int(std::ceil(1.5 * r)) + 2;
     const int side = 2 * R + 1;
     const cv::Mat& src = space.source_lab;
-    const cv::Mat& cell = space.cell_lab;
+    const cv::Mat& canvas = space.canvas_lab;
     if (src.cols < side || src.rows < side) return std::nullopt;
+    const auto allowed = [&](int x, int y) {
+        return space.grid.in_diamond_interior(x, y) && (!space.exact || space.exact(x, y));
+    };
 
     // p: a position in the cell's own square. Patches centred there stay mostly inside it, and
     // A and B squares form a checkerboard, so few patches conflict across the A/B split. The
@@ -45,12 +48,14 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     for (int attempt = 0; attempt < 16 && !placed; ++attempt) {
         px = rng.range(0, cw - 1);
         py = rng.range(0, ch - 1);
-        placed = space.grid.in_diamond_interior(px - core, py - core) &&
-                 space.grid.in_diamond_interior(px + core, py - core) &&
-                 space.grid.in_diamond_interior(px - core, py + core) &&
-                 space.grid.in_diamond_interior(px + core, py + core);
+        placed = allowed(px - core, py - core) && allowed(px + core, py - core) &&
+                 allowed(px - core, py + core) && allowed(px + core, py + core);
     }
     if (!placed) return std::nullopt;
+    const cv::Point corner = space.canvas_origin + cv::Point(px - R, py - R);
+    if (corner.x < 0 || corner.y < 0 || corner.x + side > canvas.cols ||
+        corner.y + side > canvas.rows)
+        return std::nullopt;
     int qx = rng.range(R, src.cols - 1 - R), qy = rng.range(R, src.rows - 1 - R);
     if (space.lattice) {
         const cv::Point q =
@@ -60,16 +65,13 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
         qx = q.x, qy = q.y;
     }
 
-    // Per-pixel disagreement between the cell image (wrapped) and the source under the window.
+    // Per-pixel disagreement between what the plane shows and the source under the window.
     std::vector<float> diff(static_cast<size_t>(side) * side);
-    for (int dy = -R; dy <= R; ++dy) {
-        const int cy = int(floor_mod(py + dy, ch));
-        for (int dx = -R; dx <= R; ++dx) {
-            const int cx = int(floor_mod(px + dx, cw));
+    for (int dy = -R; dy <= R; ++dy)
+        for (int dx = -R; dx <= R; ++dx)
             diff[size_t(dy + R) * side + size_t(dx + R)] =
-                lab_distance(cell.at<cv::Vec3f>(cy, cx), src.at<cv::Vec3f>(qy + dy, qx + dx));
-        }
-    }
+                lab_distance(canvas.at<cv::Vec3f>(corner.y + dy + R, corner.x + dx + R),
+                             src.at<cv::Vec3f>(qy + dy, qx + dx));
     auto node = [side](int x, int y) { return y * side + x; };
     auto weight = [&](int a, int b) { return diff[size_t(a)] + diff[size_t(b)] + kEdgeFloor; };
 
@@ -90,7 +92,7 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
             }
             const int dx = x - R, dy = y - R;
             const bool rim = x == 0 || y == 0 || x == side - 1 || y == side - 1;
-            if (rim || !space.grid.in_diamond_interior(px + dx, py + dy))
+            if (rim || !allowed(px + dx, py + dy))
                 graph.addTermWeights(n, 0, kForced);
             else if (std::abs(dx) <= core && std::abs(dy) <= core)
                 graph.addTermWeights(n, kForced, 0);
@@ -113,6 +115,8 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     p.width = x1 - x0 + 1, p.height = y1 - y0 + 1;
     p.bits.assign(size_t(p.height) * size_t(p.row_bytes()), 0);
     float seam = 0;
+    double seam_sum = 0;
+    size_t seam_edges = 0;
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
             const int n = node(x, y);
@@ -121,10 +125,13 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
                 uint8_t(1u << ((x - x0) & 7));
             const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
             for (const auto& q : nb)  // the rim is never in, so neighbours exist
-                if (!in[size_t(node(q[0], q[1]))])
-                    seam = std::max(seam, weight(n, node(q[0], q[1])));
+                if (!in[size_t(node(q[0], q[1]))]) {
+                    const float w = weight(n, node(q[0], q[1]));
+                    seam = std::max(seam, w), seam_sum += w, ++seam_edges;
+                }
         }
-    p.seam_cost = seam;
+    p.seam_cost =
+        space.mean_seam_cost ? float(seam_sum / double(std::max<size_t>(1, seam_edges))) : seam;
     p.derive_runs();
     return p;
 }

@@ -13,9 +13,15 @@
 namespace tilejet::synth {
 
 struct BuildParams {
-    int cell_size = 0;   // 0: default (128 px, at most the exemplar's smaller side)
-    int patches = 600;   // P: the best P candidates are kept and split into A and B
-    int candidates = 0;  // 0: default (40 * patches)
+    int cell_size = 0;  // 0: default (128 px, at most the exemplar's smaller side)
+    // Corner colours K (design.md section 9): the map holds K^4 cell images, one for each
+    // combination of corner colours, so that no cell image, edge or corner repeats on a grid.
+    // 1: a single cell image that wraps (what maps were before cell sets).
+    int corner_colours = 3;
+    // P per cell image: the best P candidates are kept and split into A and B.
+    // 0: default (600 for a single cell image, 32 per image of a set).
+    int patches = 0;
+    int candidates = 0;  // per cell image; 0: default (40 per patch, 8 in a set)
     uint64_t seed = 1;
     int threads = 0;              // 0: all cores; the result never depends on it
     double active_per_cell = 10;  // expected active patches per cell (eta * |set|)

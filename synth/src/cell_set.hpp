@@ -1,0 +1,80 @@
+#pragma once
+
+// A corner-coloured set of cell images (design.md section 9; Lagae and Dutré 2006, "An
+// alternative for Wang tiles: colored edges versus colored corners"), each image quilted.
+//
+// Every lattice vertex has one of K colours; a cell's image is the one made for its four
+// corners' colours, so a set holds K^4 images. What two neighbouring cells share is fixed by the
+// colours they share, and made once:
+//  - a corner block per colour: 2w x 2w pixels of the source around the vertex;
+//  - an edge strip per pair of corner colours along an edge: a 2w wide band of the source that
+//    straddles the edge from one corner block to the other, cut into both (graph cut) where it
+//    matches them best.
+// A cell image shows the halves of its four strips and the quarters of its four corner blocks
+// that lie in the cell (a frame w pixels wide), and inside it an image quilt (Efros and Freeman
+// 2001): blocks drawn among the source windows that best match what is already there, frame
+// included, each cut into its neighbours along a minimum-cost seam. Neighbours show the two
+// halves of one continuous strip, so they meet seamlessly whatever colours the hash picks; apart
+// from the thin frame, no two images share anything, so no cell image, edge or corner repeats on
+// a grid, and everything is exemplar texture joined where it matches (what texture energy
+// measures).
+
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "lattice_alignment.hpp"
+
+namespace tilejet::synth::detail {
+
+struct CellSetParams {
+    cv::Size cell;
+    int corner_colours = 2;  // K: the set has K^4 cell images
+    uint64_t seed = 1;
+    int threads = 0;
+    // Near-regular exemplars: every block and strip copies from a lattice translation (+-3 px)
+    // of where it goes, so courses and grout lines run on across blocks and cells. Null: any.
+    const LatticeTranslations* lattice = nullptr;
+};
+
+class CellSet {
+  public:
+    // `source_rgb` CV_8UC3 R,G,B, at least a cell and a frame larger than the cell each way;
+    // `source_lab` its to_lab().
+    CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params);
+
+    int corner_colours() const { return k_; }
+    int frame() const { return w_; }  // w: the shared frame's width inside each cell, in px
+    size_t size() const { return images_.size(); }
+    // Cell image tl + K tr + K^2 bl + K^3 br (the order of corner_colours.hpp), CV_8UC3 R,G,B.
+    const cv::Mat& image(size_t index) const { return images_[index]; }
+
+    // The plane around a cell that shows image `index`: 3 x 3 cells, the cell in the middle.
+    // Exact wherever exact_near_cell() holds; elsewhere it depends on the neighbours' other
+    // corners and shows one plausible choice.
+    cv::Mat neighbourhood(size_t index) const;
+    // Whether plane pixel (x, y), relative to a cell's top-left corner, depends only on that
+    // cell's own corner colours: the cell and the frame's other half beyond each edge. Patches
+    // cut for the cell's image must stay where this holds.
+    bool exact_near_cell(int x, int y) const {
+        return x >= -w_ && y >= -w_ && x < cw_ + w_ && y < ch_ + w_;
+    }
+
+  private:
+    void choose_corner_blocks();
+    cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b) const;
+    cv::Mat make_image(size_t index) const;
+    cv::Mat corner_block(uint32_t colour) const;
+
+    const cv::Mat& source_rgb_;
+    const cv::Mat& source_lab_;
+    CellSetParams params_;
+    int k_, cw_, ch_, w_, block_, overlap_;
+    std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
+    // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
+    // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.
+    std::vector<cv::Mat> horizontal_, vertical_;
+    std::vector<cv::Mat> images_;
+};
+
+}  // namespace tilejet::synth::detail
