@@ -222,7 +222,7 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
             h << (k ? ", " : "") << page.side_by_side[k];
         h << ", left to right: the top-left tiles of each wall as they hang next to each other, "
           << "all at " << figure(nlohmann::ordered_json(page.side_by_side_scale * 100))
-          << "% of print size. Full resolution: ";
+          << "% of full resolution. Full resolution: ";
         for (size_t k = 0; k < page.side_by_side.size(); ++k)
             h << (k ? ", " : "") << "<a href='wall3x3-" << page.side_by_side[k] << ".png'>"
               << page.side_by_side[k] << "</a>";
