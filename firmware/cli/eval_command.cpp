@@ -16,18 +16,22 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "quality_gates.hpp"
 #include "quality_report.hpp"
 #include "soft_proof_check.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/synth/colour_match.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/patch_coverage.hpp"
 #include "tilejet/synth/periodicity.hpp"
 #include "tilejet/synth/quilt.hpp"
 #include "tilejet/synth/repetition.hpp"
 #include "tilejet/synth/seam.hpp"
 #include "tilejet/synth/texture_energy.hpp"
+#include "tilejet/synth/tile_region.hpp"
 #include "tilejet/synth/wall.hpp"
+#include "wall_comparison.hpp"
 
 namespace tilejet::cli {
 
@@ -80,6 +84,46 @@ struct Shared {
 
 nlohmann::ordered_json lab_json(const synth::LabColour& c) {
     return {c.L, c.a, c.b};
+}
+
+// Share of tilejet's wall that shows a patch. Every tile has the same size, so it is the mean
+// of the tiles' shares; measured on the tiles' own regions of the plane, the same regions
+// tilejet_wall renders.
+double wall_patch_coverage(const synth::TextureMap& map, const synth::WallSpec& spec) {
+    const synth::TileGeometry geometry{spec.tile.width, spec.tile.height, synth::TileLayout::Wall,
+                                       spec.columns};
+    double sum = 0;
+    for (int k = 0; k < spec.tiles; ++k)
+        sum += synth::patch_coverage(map, spec.seed,
+                                     synth::tile_region(spec.seed, uint64_t(k), geometry));
+    return sum / spec.tiles;
+}
+
+// What eval prints when done: the gates first, as the page opens, then one line per method.
+void print_summary(const ReportPage& page, const std::filesystem::path& dir) {
+    const QualityGates& g = page.gates;
+    std::printf("gates (limit %s, 1 = as good as quilting): %s\n", gate_figure(g.limit).c_str(),
+                verdict(g.pass()));
+    std::printf("  periodicity               %-8s %s\n", gate_figure(g.periodicity).c_str(),
+                verdict(g.periodicity_pass()));
+    std::printf("  texture_energy vs quilt   %-8s %s\n",
+                gate_figure(g.texture_energy_vs_quilt).c_str(), verdict(g.texture_energy_pass()));
+    std::printf("  patch coverage            %s %%\n", gate_figure(g.patch_coverage * 100).c_str());
+    if (!page.side_by_side.empty())
+        std::printf("walls side by side: %s\n", (dir / "walls-side-by-side.png").c_str());
+    std::printf("%-8s %11s %14s %12s %18s %10s\n", "method", "periodicity", "texture_energy",
+                "repeat_scale", "tile_pairs_sharing", "colour dE");
+    for (const MethodSection& m : page.methods) {
+        const auto& j = m.metrics;
+        const std::optional<double> periodicity =
+            j["periodicity"].is_number() ? std::optional(j["periodicity"].get<double>())
+                                         : std::nullopt;
+        std::printf(
+            "%-8s %11s %14s %12d %18s %10s\n", m.name.c_str(), gate_figure(periodicity).c_str(),
+            gate_figure(j["texture_energy"].get<double>()).c_str(), j["repeat_scale"].get<int>(),
+            gate_figure(j["tile_pairs_sharing"].get<double>()).c_str(),
+            gate_figure(j["colour"]["mean_delta_e2000"].get<double>()).c_str());
+    }
 }
 
 MethodSection measure(const std::string& name, const std::string& description,
@@ -192,12 +236,12 @@ void run_eval(const EvalOptions& o) {
     ReportPage page;
     page.window_sizes = synth::repeat_window_sizes({tile.width, tile.height});
     page.exemplar_colour = shared.exemplar_colour;
-    nlohmann::ordered_json metrics;
+    std::vector<NamedPicture> corners;  // tilejet, canvas, quilt: the walls side by side
     auto run = [&](const std::string& name, const std::string& what, auto make) {
         progress.say(name + ": making the wall");
         const synth::Wall wall = make();
         page.methods.push_back(measure(name, what, wall, shared, o, dir, progress));
-        metrics[name] = page.methods.back().metrics;
+        if (name != "cell") corners.push_back({name, wall_corner(wall)});
     };
     run("tilejet",
         "tilejet: tiles 0.." + std::to_string(o.tiles - 1) + " of job seed " +
@@ -214,8 +258,33 @@ void run_eval(const EvalOptions& o) {
         [&] { return synth::cell_wall(map, spec); });
     run("quilt", "quilt: every tile quilted on its own from the exemplar (the offline reference).",
         [&] { return synth::quilt_wall(shared.exemplar, spec, block); });
+    auto section = [&](const std::string& name) -> nlohmann::ordered_json& {
+        for (MethodSection& m : page.methods)
+            if (m.name == name) return m.metrics;
+        throw std::logic_error("no " + name + " wall in the report");
+    };
+    progress.say("tilejet: patch coverage");
+    const double coverage = wall_patch_coverage(map, spec);
+    {
+        // Coverage first in tilejet's section: it is what its periodicity mostly depends on.
+        nlohmann::ordered_json& tilejet = section("tilejet");
+        nlohmann::ordered_json first{{"patch_coverage", coverage}};
+        for (auto& [key, value] : tilejet.items())
+            first[key] = value;
+        tilejet = first;
+    }
+    page.gates = quality_gates(section("tilejet"), section("quilt"), coverage);
+    progress.say("walls side by side");
+    page.side_by_side_scale = write_walls_side_by_side(corners, dir);
+    for (const NamedPicture& c : corners)
+        page.side_by_side.push_back(c.name);
     progress.done();
 
+    // metrics.json opens with the gates, as the page does; then every method's figures.
+    nlohmann::ordered_json metrics;
+    metrics["gates"] = gates_json(page.gates);
+    for (const MethodSection& m : page.methods)
+        metrics[m.name] = m.metrics;
     {
         const std::filesystem::path path = dir / "metrics.json";
         std::ofstream out(path, std::ios::trunc);
@@ -244,6 +313,8 @@ void run_eval(const EvalOptions& o) {
         "texture energy: " + std::to_string(kEnergySamples) +
             " random 8x8 patches per wall, RMS CIELab distance per pixel to the nearest "
             "exemplar patch",
+        "patch coverage: share of the tilejet wall's pixels (every tile's own region of the "
+        "plane) that show a patch rather than the cell image",
         "repeat curve: every window position hashed (2D polynomial hash modulo 2^61-1); equal "
         "hashes count as identical",
     };
@@ -253,6 +324,7 @@ void run_eval(const EvalOptions& o) {
                              "round trip moves the colour by more than CIEDE2000 3; soft proof "
                              "with perceptual intent, 300% ink limit");
     write_report_page(page, dir);
+    print_summary(page, dir);
     std::printf("wrote %s/index.html and metrics.json\n", dir.string().c_str());
 }
 

@@ -13,10 +13,17 @@
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/patch_coverage.hpp"
 
 namespace tilejet::cli {
 
 namespace {
+
+// map info's patch coverage is of one fixed region and job seed, so that two maps' figures
+// compare: 2048 x 2048 px is 16 x 16 cells of the default size, enough that the share hardly
+// depends on the seed, and it takes well under a second.
+constexpr synth::Region kCoverageRegion{0, 0, 2048, 2048};
+constexpr uint64_t kCoverageSeed = 1;
 
 struct BuildOptions {
     std::string exemplar, output, enlarge = "quilt";
@@ -77,6 +84,7 @@ void run_info(const std::string& path) {
     j["source_width"] = map.source.cols;
     j["source_height"] = map.source.rows;
     j["bytes"] = std::filesystem::file_size(path);
+    j["patch_coverage"] = synth::patch_coverage(map, kCoverageSeed, kCoverageRegion);
     j["build"] = {{"seed", map.build.seed},
                   {"exemplar_width", map.build.exemplar_width},
                   {"exemplar_height", map.build.exemplar_height},

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "wall_comparison.hpp"
+
 namespace tilejet::cli {
 
 namespace {
@@ -131,6 +133,37 @@ std::string figure(const nlohmann::ordered_json& v) {
     return v.dump();
 }
 
+// The quilt baseline's texture energy, 0 when the page has none.
+double quilt_energy(const ReportPage& page) {
+    for (const MethodSection& m : page.methods)
+        if (m.name == "quilt") return m.metrics.value("texture_energy", 0.0);
+    return 0;
+}
+
+// The two gates and patch coverage, large, with their verdicts: the first thing on the page.
+std::string gates_html(const ReportPage& page) {
+    const QualityGates& g = page.gates;
+    std::ostringstream h;
+    auto gate = [&](const char* label, const std::optional<double>& value, bool pass,
+                    const char* what) {
+        h << "<div class='gate " << (pass ? "pass" : "fail") << "'><div class='label'>" << label
+          << "</div><div class='value'>" << gate_figure(value) << " <b>" << verdict(pass)
+          << "</b></div><div class='what'>" << what << "</div></div>";
+    };
+    h << "<h2>Gates: " << verdict(g.pass()) << "</h2><div class='gates'>";
+    gate("periodicity", g.periodicity, g.periodicity_pass(),
+         "tilejet wall's highest autocorrelation peak, relative to the exemplar quilted to the "
+         "same size");
+    gate("texture_energy vs quilt", g.texture_energy_vs_quilt, g.texture_energy_pass(),
+         "tilejet's texture energy divided by the quilt baseline's");
+    h << "<div class='gate'><div class='label'>patch coverage</div><div class='value'>"
+      << gate_figure(g.patch_coverage * 100)
+      << " %</div><div class='what'>share of tilejet's wall showing a patch; the rest shows the "
+         "cell image, which repeats with the cell lattice</div></div></div><p>Both gates pass at "
+      << gate_figure(g.limit) << " or below (1 = as good as quilting every tile offline).</p>";
+    return h.str();
+}
+
 }  // namespace
 
 void write_rgb_png(const cv::Mat& rgb, const std::filesystem::path& path) {
@@ -175,8 +208,26 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
          ".row>div{flex:1;min-width:300px}table{border-collapse:collapse}"
          "td,th{border:1px solid #ccc;padding:4px 8px;text-align:right}"
          "th:first-child,td:first-child{text-align:left}.plot{background:#fafafa}"
+         ".gates{display:flex;gap:16px;flex-wrap:wrap}.gate{border:2px solid #999;"
+         "padding:8px 16px;min-width:220px;max-width:360px}.gate.pass{border-color:#1e8449}"
+         ".gate.fail{border-color:#c0392b}.gate .value{font-size:28px}.gate.pass b{color:#1e8449}"
+         ".gate.fail b{color:#c0392b}.gate .what{font-size:12px;color:#555}"
          "</style></head><body><h1>"
       << html_escape(page.title) << "</h1>";
+    h << gates_html(page);
+    if (!page.side_by_side.empty()) {
+        h << "<h2>" << kComparedTiles << "&times;" << kComparedTiles
+          << " adjacent tiles, side by side</h2><p>";
+        for (size_t k = 0; k < page.side_by_side.size(); ++k)
+            h << (k ? ", " : "") << page.side_by_side[k];
+        h << ", left to right: the top-left tiles of each wall as they hang next to each other, "
+          << "all at " << figure(nlohmann::ordered_json(page.side_by_side_scale * 100))
+          << "% of full resolution. Full resolution: ";
+        for (size_t k = 0; k < page.side_by_side.size(); ++k)
+            h << (k ? ", " : "") << "<a href='wall3x3-" << page.side_by_side[k] << ".png'>"
+              << page.side_by_side[k] << "</a>";
+        h << ".</p><img src='walls-side-by-side.png'>";
+    }
     h << "<div class='row'><div><h3>Exemplar</h3><img src='exemplar.png'></div>"
       << "<div><h3>Repeat curve</h3><p>Share of the wall covered by S&times;S windows that occur"
          " verbatim elsewhere on it (orange: the 5% line that sets repeat_scale).</p>"
@@ -210,7 +261,18 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
     for (int s : page.window_sizes)
         row("repeat_curve " + std::to_string(s),
             [&](const auto& j) { return j["repeat_curve"][std::to_string(s)]; });
-    for (const char* key : {"repeat_scale", "tile_pairs_sharing", "periodicity", "texture_energy"})
+    row("patch_coverage", [](const auto& j) {
+        return j.contains("patch_coverage") ? j["patch_coverage"] : nlohmann::ordered_json();
+    });
+    for (const char* key : {"periodicity", "texture_energy"})
+        row(key, [&](const auto& j) { return j[key]; });
+    row("texture_energy / quilt's", [&](const auto& j) {
+        const double reference = quilt_energy(page);
+        return reference > 0
+                   ? nlohmann::ordered_json(j["texture_energy"].template get<double>() / reference)
+                   : nlohmann::ordered_json();
+    });
+    for (const char* key : {"repeat_scale", "tile_pairs_sharing"})
         row(key, [&](const auto& j) { return j[key]; });
     row("seam mean (vs exemplar)",
         [](const auto& j) { return j["seam"].is_null() ? j["seam"] : j["seam"]["mean"]; });

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "quality_gates.hpp"
 #include "tilejet/synth/colour_match.hpp"
 #include "tilejet/synth/repetition.hpp"
 #include "tilejet/synth/wall.hpp"
@@ -35,12 +36,18 @@ void write_rgb_png(const cv::Mat& rgb, const std::filesystem::path& path);
 struct ReportPage {
     std::string title;
     std::vector<std::string> facts;  // run settings, one line each
+    QualityGates gates;              // what the page opens with
+    // walls-side-by-side.png (see wall_comparison.hpp): which methods, left to right, and the
+    // factor they were scaled by; empty when there is none.
+    std::vector<std::string> side_by_side;
+    double side_by_side_scale = 1;
     synth::LabStatistics exemplar_colour;
     std::vector<MethodSection> methods;
     std::vector<int> window_sizes;
 };
 
-// index.html, referring to exemplar.png and the pictures above.
+// index.html, referring to exemplar.png and the pictures above. It opens with the gates and
+// the walls side by side, then the pictures of each method, then the table of every figure.
 void write_report_page(const ReportPage& page, const std::filesystem::path& dir);
 
 }  // namespace tilejet::cli

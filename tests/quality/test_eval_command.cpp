@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "../synth/fixtures.hpp"
@@ -19,14 +20,30 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     REQUIRE(std::system(command.c_str()) == 0);
 
     const auto report = dir / "report";
-    for (const char* file :
-         {"index.html", "exemplar.png", "tilejet-wall.png", "tilejet-repeats.png",
-          "tilejet-seams.png", "canvas-wall.png", "cell-repeats.png", "quilt-seams.png"})
+    for (const char* file : {"index.html", "exemplar.png", "tilejet-wall.png",
+                             "tilejet-repeats.png", "tilejet-seams.png", "canvas-wall.png",
+                             "cell-repeats.png", "quilt-seams.png", "wall3x3-tilejet.png",
+                             "wall3x3-canvas.png", "wall3x3-quilt.png", "walls-side-by-side.png"})
         CHECK(std::filesystem::exists(report / file));
 
     std::ifstream in(report / "metrics.json");
-    const nlohmann::json m = nlohmann::json::parse(in);
-    REQUIRE(m.size() == 4);
+    const nlohmann::ordered_json m = nlohmann::ordered_json::parse(in);
+    REQUIRE(m.size() == 5);
+    // The gates come first, as on the page: a reader of the file sees the verdict before the
+    // figures that explain it.
+    REQUIRE(m.begin().key() == "gates");
+    const auto& gates = m["gates"];
+    CHECK(gates["limit"] == 1.2);
+    CHECK(gates["periodicity"] == m["tilejet"]["periodicity"]);
+    CHECK(gates["texture_energy_vs_quilt"].get<double>() ==
+          Approx(m["tilejet"]["texture_energy"].get<double>() /
+                 m["quilt"]["texture_energy"].get<double>()));
+    CHECK(gates["pass"] == (gates["periodicity"].get<double>() <= 1.2 &&
+                            gates["texture_energy_vs_quilt"].get<double>() <= 1.2));
+    const double coverage = m["tilejet"]["patch_coverage"];
+    CHECK(gates["patch_coverage"] == coverage);
+    CHECK(coverage > 0);
+    CHECK(coverage < 1);
     for (const char* method : {"tilejet", "canvas", "cell", "quilt"}) {
         INFO(method);
         REQUIRE(m.contains(method));
@@ -47,4 +64,19 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(m["cell"]["seam"].is_null());
     CHECK(m["cell"]["periodicity"].get<double>() > 2);
     CHECK(m["tilejet"]["seam"]["mean"].get<double>() > 0);
+
+    // The page and the printed summary open with the gates, then the walls side by side.
+    std::ifstream page_in(report / "index.html");
+    const std::string page((std::istreambuf_iterator<char>(page_in)),
+                           std::istreambuf_iterator<char>());
+    const size_t gates_at = page.find("Gates: "), walls_at = page.find("walls-side-by-side.png");
+    REQUIRE(gates_at != std::string::npos);
+    REQUIRE(walls_at != std::string::npos);
+    CHECK(gates_at < walls_at);
+    CHECK(walls_at < page.find("<img src='exemplar.png'>"));
+    CHECK(page.find("<img") > gates_at);
+    std::ifstream log_in(dir / "log");
+    const std::string log((std::istreambuf_iterator<char>(log_in)),
+                          std::istreambuf_iterator<char>());
+    CHECK(log.starts_with("gates (limit 1.2"));
 }
