@@ -113,8 +113,10 @@ void add_map_commands(CLI::App& app) {
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,
                   "candidate patches searched per cell image (default 40 per patch, 8 in a set)");
-    b->add_option("--active", build->params.active_per_cell,
-                  "expected active patches per cell, eta * |set| (default 10)");
+    b->add_option(
+        "--active", build->params.active_per_cell,
+        "expected active patches per cell, eta * |set| (default 10 for one cell image, 4 in a "
+        "set)");
     b->add_option("--seed", build->params.seed, "build seed (default 1)");
     b->add_option("--threads", build->params.threads, "threads (default: all cores)");
     b->add_option("--lattice", build->params.lattice,

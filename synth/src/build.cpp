@@ -35,6 +35,8 @@ constexpr int kCandidatesPerPatch = 40;
 constexpr int kDefaultPatches = 600;
 constexpr int kDefaultPatchesPerSetImage = 32;
 constexpr int kCandidatesPerSetPatch = 8;
+constexpr int kOffsetDrawsInSet = 24;
+constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
 
 // Stream ids keep the random draws of each build stage independent of one another.
 enum Stream : uint64_t { kCellStream = 1, kSourceStream, kCandidateStream, kSplitStream };
@@ -52,7 +54,9 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
     if (p.candidates != 0 && p.candidates < p.patches)
         throw SynthError("--candidates " + std::to_string(p.candidates) +
                          " must be at least --patches (" + std::to_string(p.patches) + ")");
-    if (!(p.active_per_cell > 0)) throw SynthError("active patches per cell must be positive");
+    if (!(p.active_per_cell >= 0) || !std::isfinite(p.active_per_cell))
+        throw SynthError("--active " + std::to_string(p.active_per_cell) +
+                         " must be positive (or 0 for the default)");
     if (p.threads < 0) throw SynthError("--threads must not be negative");
     if (!(p.colour_gain >= 0) || !std::isfinite(p.colour_gain))
         throw SynthError("--colour-gain " + std::to_string(p.colour_gain) + " must be 0 or more");
@@ -206,7 +210,8 @@ cv::Mat tiled_neighbourhood(const cv::Mat& cell) {
 // One cell image's own A and B patch sets: the best candidates cut against what the plane
 // shows around the image, split so that no A patch meets a B patch in any neighbour placement.
 void make_patch_sets(CellImage& image, const CandidateSpace& space, const BuildParams& params,
-                     int patches, int candidates, int threads, const BuildProgress& progress) {
+                     int patches, int candidates, double active_per_cell, int threads,
+                     const BuildProgress& progress) {
     BuildParams per_image = params;
     per_image.patches = patches;
     const std::vector<Patch> kept =
@@ -233,8 +238,8 @@ void make_patch_sets(CellImage& image, const CandidateSpace& space, const BuildP
         throw SynthError(
             "could not split the patches into two non-overlapping sets; "
             "try more --patches or a larger --cell");
-    image.a = make_set(kept, split.a, params.active_per_cell);
-    image.b = make_set(kept, split.b, params.active_per_cell);
+    image.a = make_set(kept, split.a, active_per_cell);
+    image.b = make_set(kept, split.b, active_per_cell);
 }
 
 }  // namespace
@@ -249,6 +254,9 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                            ? params.cell_size
                            : std::min(kDefaultCellSize, std::min(input.cols, input.rows));
     const int corner_colours = params.corner_colours;
+    const double active_per_cell = params.active_per_cell > 0
+                                       ? params.active_per_cell
+                                       : (corner_colours == 1 ? kActivePerCell : kActivePerSetCell);
     // A set shares the plane out among many cell images: fewer patches each, searched less
     // widely, keep the build within a minute for a 512 px exemplar.
     const int patches = params.patches
@@ -285,8 +293,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     TextureMap map;
     map.cell_width = cell_size.width;
     map.cell_height = cell_size.height;
-    map.build = {params.seed, exemplar.cols, exemplar.rows,
-                 patches,     candidates,    params.active_per_cell};
+    map.build = {params.seed, exemplar.cols, exemplar.rows, patches, candidates, active_per_cell};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,
@@ -334,8 +341,10 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                                    std::max(2, std::min(cell / 6, (source_side / 2 - 2) * 2 / 3)),
                                    lattice ? &*lattice : nullptr,
                                    {},
-                                   false};
-        make_patch_sets(image, space, params, patches, candidates, threads, progress);
+                                   false,
+                                   1};
+        make_patch_sets(image, space, params, patches, candidates, active_per_cell, threads,
+                        progress);
         map.cell_images.push_back(std::move(image));
     } else {
         if (progress) progress("cell set", 0, 1);
@@ -358,11 +367,13 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                                        2,
                                        max_radius,
                                        lattice ? &*lattice : nullptr,
-                                       [&set](int x, int y) { return set.exact_near_cell(x, y); },
-                                       true};
+                                       [&set](int x, int y) { return set.may_hold_patch(x, y); },
+                                       true,
+                                       kOffsetDrawsInSet};
             BuildParams per_image = params;
             per_image.seed = hash_combine(params.seed, m);
-            make_patch_sets(image, space, per_image, patches, candidates, threads, {});
+            make_patch_sets(image, space, per_image, patches, candidates, active_per_cell, threads,
+                            {});
             map.cell_images.push_back(std::move(image));
         }
         if (progress) progress("cell images", set.size(), set.size());

@@ -56,14 +56,36 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     if (corner.x < 0 || corner.y < 0 || corner.x + side > canvas.cols ||
         corner.y + side > canvas.rows)
         return std::nullopt;
-    int qx = rng.range(R, src.cols - 1 - R), qy = rng.range(R, src.rows - 1 - R);
-    if (space.lattice) {
-        const cv::Point q =
-            cv::Point(px, py) + space.lattice->near({double(qx - px), double(qy - py)}, rng);
-        if (q.x < R || q.y < R || q.x > src.cols - 1 - R || q.y > src.rows - 1 - R)
-            return std::nullopt;
-        qx = q.x, qy = q.y;
+    // q: the source pixel shown at p. Of `offset_draws` random draws, the one that best matches
+    // the plane on the ring where the cut will run (every other pixel of it: enough to rank).
+    const auto ring_cost = [&](int qx, int qy) {
+        double cost = 0;
+        for (int dy = -R + 1; dy < R; dy += 2)
+            for (int dx = -R + 1; dx < R; dx += 2) {
+                if (std::max(std::abs(dx), std::abs(dy)) <= core || !allowed(px + dx, py + dy))
+                    continue;
+                const cv::Vec3f d = canvas.at<cv::Vec3f>(corner.y + dy + R, corner.x + dx + R) -
+                                    src.at<cv::Vec3f>(qy + dy, qx + dx);
+                cost += double(d.dot(d));
+            }
+        return cost;
+    };
+    int qx = -1, qy = -1;
+    double best = 0;
+    for (int draw = 0; draw < std::max(1, space.offset_draws); ++draw) {
+        cv::Point q(rng.range(R, src.cols - 1 - R), rng.range(R, src.rows - 1 - R));
+        if (space.lattice) {
+            q = cv::Point(px, py) + space.lattice->near({double(q.x - px), double(q.y - py)}, rng);
+            if (q.x < R || q.y < R || q.x > src.cols - 1 - R || q.y > src.rows - 1 - R) continue;
+        }
+        if (space.offset_draws <= 1) {
+            qx = q.x, qy = q.y;
+            break;
+        }
+        const double cost = ring_cost(q.x, q.y);
+        if (qx < 0 || cost < best) qx = q.x, qy = q.y, best = cost;
     }
+    if (qx < 0) return std::nullopt;
 
     // Per-pixel disagreement between what the plane shows and the source under the window.
     std::vector<float> diff(static_cast<size_t>(side) * side);

@@ -31,6 +31,10 @@ struct CandidateSpace {
     // seen along its length, and a cut that hugs its forced core where the source disagrees
     // (a square blob) scores badly however small its worst edge.
     bool mean_seam_cost = false;
+    // Random source positions drawn per candidate, of which the best match on the ring where
+    // the cut runs is cut: 1 for the plain random draw of the Kolář method. A random source
+    // disagrees with the plane all around, and its cut hugs the forced core.
+    int offset_draws = 1;
 };
 
 // Candidate number `seed` (design.md section 2.4): a random cell position p, source position q

@@ -50,15 +50,15 @@ class CellSet {
     const cv::Mat& image(size_t index) const { return images_[index]; }
 
     // The plane around a cell that shows image `index`: 3 x 3 cells, the cell in the middle.
-    // Exact wherever exact_near_cell() holds; elsewhere it depends on the neighbours' other
+    // Exact inside the cell and along its frame; beyond, it depends on the neighbours' other
     // corners and shows one plausible choice.
     cv::Mat neighbourhood(size_t index) const;
-    // Whether plane pixel (x, y), relative to a cell's top-left corner, depends only on that
-    // cell's own corner colours: the cell and the frame's other half beyond each edge. Patches
-    // cut for the cell's image must stay where this holds.
-    bool exact_near_cell(int x, int y) const {
-        return x >= -w_ && y >= -w_ && x < cw_ + w_ && y < ch_ + w_;
-    }
+    // Where the patches of a set's image may go, cell-relative: inside the cell. Beyond it the
+    // plane shows the neighbours' images, whose patches belong to other sets: the A/B split of
+    // one image's patches cannot keep an A patch of one image off a B patch of another, and
+    // where two overlapped, sampling and region rendering disagreed. Cells never overlap, and
+    // the frame already makes their borders seamless.
+    bool may_hold_patch(int x, int y) const { return x >= 0 && y >= 0 && x < cw_ && y < ch_; }
 
   private:
     void choose_corner_blocks();

@@ -1,5 +1,7 @@
 #include "offset_matching.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <optional>
@@ -21,11 +23,25 @@ std::optional<cv::Point> match_offset(const OffsetSearch& search, const cv::Mat&
     if (best == std::numeric_limits<float>::max()) return std::nullopt;
     // The FFT leaves rounding noise around zero; a floor keeps "within 10%" meaningful there.
     const float limit = best * float(1 + search.tolerance) + 1e-3f * float(cv::sum(mask)[0]);
-    std::vector<cv::Point> near;
+    std::vector<std::pair<float, cv::Point>> ranked;
     for (int y = 0; y < costs.rows; ++y)
         for (int x = 0; x < costs.cols; ++x)
-            if (costs.at<float>(y, x) <= limit && (!search.allowed || search.allowed({x, y})))
-                near.push_back({x, y});
+            if (!search.allowed || search.allowed({x, y}))
+                ranked.push_back({costs.at<float>(y, x), {x, y}});
+    // Stable: equal costs keep raster order, so the pick never depends on the sort.
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<cv::Point> near, distinct;
+    for (const auto& [cost, at] : ranked) {
+        const bool within = cost <= limit;
+        if (!within && int(distinct.size()) >= search.min_choices) break;
+        bool apart = true;
+        for (const cv::Point& d : distinct)
+            apart = apart && std::max(std::abs(d.x - at.x), std::abs(d.y - at.y)) >= search.spread;
+        if (apart) distinct.push_back(at);
+        if (within) near.push_back(at);
+    }
+    if (int(distinct.size()) > int(near.size()) || near.empty()) near = distinct;
     return near[size_t(rng.below(near.size()))];
 }
 

@@ -20,6 +20,11 @@ struct OffsetSearch {
     // own source): `source_corner` is where the window's top-left pixel would copy from.
     std::function<bool(cv::Point source_corner)> allowed;
     double tolerance = 0.1;  // pick at random among offsets within 10% of the best match
+    // ... and among at least this many distinct places (the best, each `spread` px or more
+    // from the others), however far from the best: with wide overlaps few offsets come within
+    // 10%, and pieces that see the same neighbours would all copy the same place.
+    int min_choices = 1;
+    int spread = 8;
 };
 
 // The source position of `old_lab`'s top-left pixel (CV_32FC3 window of what the plane shows)
