@@ -20,6 +20,7 @@ const cv::Mat& demo_exemplar() {
 const synth::TextureMap& small_map() {
     static const synth::TextureMap map = [] {
         synth::BuildParams params;
+        params.corner_colours = 1;  // the one-image map whose tests came before cell sets
         params.cell_size = 64;
         params.patches = 160;
         params.candidates = 3200;

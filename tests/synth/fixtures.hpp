@@ -15,7 +15,7 @@ const cv::Mat& demo_exemplar();
 // The mean CIELab colour of an 8-bit R,G,B image (OpenCV's D65 sRGB conversion).
 cv::Vec3d mean_lab(const cv::Mat& rgb);
 
-// A small map of the demo exemplar (64 px cells, 160 patches), built once per test run.
+// A small one-image map of the demo exemplar (64 px cells, 160 patches), built once per run.
 const synth::TextureMap& small_map();
 
 // A fresh directory under the system temp dir, removed when the object goes away.

@@ -82,9 +82,10 @@ TEST_CASE("a built map has patches in both sets, inside their diamonds and the s
 
 TEST_CASE("map builds do not depend on the number of threads", "[build]") {
     BuildParams p;
+    p.corner_colours = 2;  // a set: its images and their patches are built on threads too
     p.cell_size = 48;
-    p.patches = 60;
-    p.candidates = 900;
+    p.patches = 12;
+    p.candidates = 96;
     p.seed = 4;
     p.threads = 1;
     const TextureMap one = build_texture_map(demo_exemplar(), p);
@@ -99,6 +100,7 @@ TEST_CASE("small exemplars are enlarged into a source twice the cell size", "[bu
     cv::Mat small;
     demo_exemplar()(cv::Rect(0, 0, 70, 70)).copyTo(small);
     BuildParams p;
+    p.corner_colours = 1;
     p.cell_size = 64;
     p.patches = 40;
     p.candidates = 400;

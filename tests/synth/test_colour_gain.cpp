@@ -92,6 +92,7 @@ TEST_CASE("colour gain: stochastic exemplars and negative gains are errors", "[c
 TEST_CASE("colour gain: map build takes its source from the rebuilt exemplar",
           "[colour_gain][build]") {
     BuildParams p;
+    p.corner_colours = 1;
     p.cell_size = 64;  // the lattice rounds it to whole bricks; the exemplar is the source
     p.patches = 20;
     p.candidates = 120;

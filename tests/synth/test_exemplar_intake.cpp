@@ -23,6 +23,7 @@ namespace {
 
 BuildParams quick_params() {
     BuildParams p;
+    p.corner_colours = 1;
     p.cell_size = 32;
     p.patches = 40;
     p.candidates = 400;

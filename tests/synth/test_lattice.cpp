@@ -84,8 +84,9 @@ TEST_CASE("a lattice-aware map keeps the exemplar's lattice at four times its si
     const Basis brick{{40, 0}, {20, 17}};
     const cv::Mat exemplar = make_lattice_texture(brick, {233, 191}, 4);
     BuildParams p;
-    p.patches = 80;
-    p.candidates = 1200;
+    p.corner_colours = 2;  // a set: every image and strip must keep the courses
+    p.patches = 16;
+    p.candidates = 128;
     const TextureMap map = build_texture_map(exemplar, p);
     // Cells are a lattice-compatible rectangle: whole courses (34 px) and whole bricks (40 px).
     INFO("cell " << map.cell_width << "x" << map.cell_height);

@@ -1,0 +1,293 @@
+// Corner-coloured cell sets (design.md section 9): seamless neighbours whatever the hash picks,
+// uniform choice, rendering equal to sampling, old one-image maps unchanged, and no grid.
+
+#include <openssl/evp.h>
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "fixtures.hpp"
+#include "tilejet/synth/build.hpp"
+#include "tilejet/synth/map_file.hpp"
+#include "tilejet/synth/quilt.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+using namespace tilejet::synth;
+using tilejet::test::demo_exemplar;
+
+namespace {
+
+constexpr int kCell = 48;
+
+// A small set of the demo design: K = 2, so 16 cell images, 48 px cells.
+const TextureMap& small_set() {
+    static const TextureMap map = [] {
+        BuildParams p;
+        p.corner_colours = 2;
+        p.cell_size = kCell;
+        p.patches = 12;
+        p.candidates = 96;
+        p.seed = 3;
+        return build_texture_map(demo_exemplar(), p);
+    }();
+    return map;
+}
+
+cv::Mat lab_of(const cv::Mat& rgb) {
+    cv::Mat lab;
+    rgb.convertTo(lab, CV_32FC3, 1.0 / 255);
+    cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);
+    return lab;
+}
+
+// Mean CIE76 difference between column `a` of one image and column `b` of another.
+double column_jump(const cv::Mat& lab_a, int a, const cv::Mat& lab_b, int b) {
+    double sum = 0;
+    for (int y = 0; y < lab_a.rows; ++y)
+        sum += cv::norm(lab_a.at<cv::Vec3f>(y, a) - lab_b.at<cv::Vec3f>(y, b));
+    return sum / lab_a.rows;
+}
+
+struct Corners {
+    int tl, tr, bl, br;
+};
+
+Corners corners_of(size_t index, int k) {
+    const int m = int(index);
+    return {m % k, m / k % k, m / k / k % k, m / k / k / k};
+}
+
+std::string sha256_hex(const cv::Mat& m) {
+    std::array<unsigned char, 32> digest{};
+    unsigned int len = 0;
+    std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+    EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
+    for (int r = 0; r < m.rows; ++r)
+        EVP_DigestUpdate(ctx.get(), m.ptr(r), size_t(m.cols) * m.elemSize());
+    EVP_DigestFinal_ex(ctx.get(), digest.data(), &len);
+    static const char digits[] = "0123456789abcdef";
+    std::string hex;
+    for (unsigned char b : digest)
+        hex += digits[b >> 4], hex += digits[b & 15];
+    return hex;
+}
+
+// Pearson correlation in CIELab (channels pooled) between `lab` and itself shifted by `lag`,
+// over their overlap.
+double correlation_at(const cv::Mat& lab, cv::Point lag) {
+    const cv::Rect a(std::max(0, -lag.x), std::max(0, -lag.y), lab.cols - std::abs(lag.x),
+                     lab.rows - std::abs(lag.y));
+    const cv::Rect b = a + lag;
+    const cv::Mat pa = lab(a), pb = lab(b);
+    const cv::Scalar ma = cv::mean(pa), mb = cv::mean(pb);
+    double cov = 0, va = 0, vb = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const cv::Vec3f p = pa.at<cv::Vec3f>(y, x), q = pb.at<cv::Vec3f>(y, x);
+            for (int c = 0; c < 3; ++c) {
+                const double u = p[c] - ma[c], v = q[c] - mb[c];
+                cov += u * v, va += u * u, vb += v * v;
+            }
+        }
+    return cov / std::sqrt(va * vb);
+}
+
+// The periodic-grid detector: how much more a render correlates with itself one or two cells
+// away than half a cell off those lags. A plane that repeats its cell image correlates
+// strongly at whole cells and nowhere else; a plane without a grid looks the same at both.
+double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
+    const cv::Mat lab = lab_of(rgb);
+    const std::vector<cv::Point> on = {{cw, 0},   {0, ch},     {cw, ch},
+                                       {cw, -ch}, {2 * cw, 0}, {0, 2 * ch}};
+    double grid = 0, off = 0;
+    for (const cv::Point& lag : on) {
+        grid += correlation_at(lab, lag);
+        off += correlation_at(lab, lag + cv::Point(cw / 2, ch / 2));
+    }
+    return (grid - off) / double(on.size());
+}
+
+}  // namespace
+
+TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair the hash can pick",
+          "[cell_set]") {
+    const TextureMap& map = small_set();
+    const int k = map.corner_colours;
+    REQUIRE(k == 2);
+    REQUIRE(map.cell_images.size() == 16);
+    std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
+    for (const CellImage& image : map.cell_images) {
+        lab.push_back(lab_of(image.rgb));
+        lab_t.push_back(lab.back().t());
+    }
+    // The typical jump between two neighbouring columns or rows inside an image.
+    double inside = 0;
+    int counted = 0;
+    for (size_t m = 0; m < lab.size(); ++m)
+        for (int x = 0; x + 1 < kCell; ++x, counted += 2)
+            inside +=
+                column_jump(lab[m], x, lab[m], x + 1) + column_jump(lab_t[m], x, lab_t[m], x + 1);
+    inside /= counted;
+
+    double compatible_sum = 0, incompatible_sum = 0;
+    int compatible = 0, incompatible = 0;
+    for (size_t a = 0; a < lab.size(); ++a)
+        for (size_t b = 0; b < lab.size(); ++b) {
+            const Corners ca = corners_of(a, k), cb = corners_of(b, k);
+            // b right of a, and b below a.
+            for (const bool beside : {true, false}) {
+                const bool fits =
+                    beside ? ca.tr == cb.tl && ca.br == cb.bl : ca.bl == cb.tl && ca.br == cb.tr;
+                const double jump = beside ? column_jump(lab[a], kCell - 1, lab[b], 0)
+                                           : column_jump(lab_t[a], kCell - 1, lab_t[b], 0);
+                if (fits) {
+                    INFO("image " << a << (beside ? " left of " : " above ") << b << ": jump "
+                                  << jump << ", inside " << inside);
+                    REQUIRE(jump < 2.0 * inside);
+                    compatible_sum += jump, ++compatible;
+                } else {
+                    incompatible_sum += jump, ++incompatible;
+                }
+            }
+        }
+    // Every pair the hash can pick: 16 images, each with 4 possible right and 4 lower neighbours.
+    REQUIRE(compatible == 2 * 16 * 4);
+    // The measure can fail: pairs the hash never picks do not meet seamlessly.
+    INFO("compatible " << compatible_sum / compatible << ", others "
+                       << incompatible_sum / incompatible);
+    REQUIRE(incompatible_sum / incompatible > 1.5 * compatible_sum / compatible);
+}
+
+TEST_CASE("what a cell shows along an edge depends only on the edge's corner colours",
+          "[cell_set]") {
+    const TextureMap& map = small_set();
+    const int k = map.corner_colours;
+    // The frame: some columns along the right edge are the same in all images with the same
+    // right corners (and likewise for the other edges), so neighbours always share them.
+    std::map<std::pair<int, int>, cv::Mat> right, bottom;
+    for (size_t m = 0; m < map.cell_images.size(); ++m) {
+        const Corners c = corners_of(m, k);
+        const cv::Mat col = map.cell_images[m].rgb.col(kCell - 1);
+        const cv::Mat row = map.cell_images[m].rgb.row(kCell - 1);
+        auto [r, fresh_r] = right.emplace(std::pair{c.tr, c.br}, col);
+        auto [b, fresh_b] = bottom.emplace(std::pair{c.bl, c.br}, row);
+        if (!fresh_r) REQUIRE(cv::norm(r->second, col, cv::NORM_INF) == 0);
+        if (!fresh_b) REQUIRE(cv::norm(b->second, row, cv::NORM_INF) == 0);
+    }
+    REQUIRE(right.size() == size_t(k * k));
+    // And images differ elsewhere: they are not one image repeated.
+    REQUIRE(cv::norm(map.cell_images[0].rgb, map.cell_images[15].rgb, cv::NORM_INF) > 0);
+}
+
+TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cell_set]") {
+    // Only the map id and K decide; no images are needed to count.
+    TextureMap map;
+    map.corner_colours = 3;
+    map.id[0] = 0x5a, map.id[5] = 0x17;
+    const int images = 81;
+    std::vector<double> count(images, 0);
+    std::vector<double> next(9, 0);  // the right neighbour's new corners, given this cell's
+    const int side = 300;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const uint32_t m = cell_image_index(map, 99, {i - 150, j + 7000});
+            REQUIRE(m < uint32_t(images));
+            ++count[m];
+            const uint32_t r = cell_image_index(map, 99, {i - 149, j + 7000});
+            // Seamless: the right neighbour's left corners are this cell's right corners.
+            REQUIRE(r % 3 == m / 3 % 3);
+            REQUIRE(r / 9 % 3 == m / 27);
+            ++next[(r / 3 % 3) + 3 * (r / 27)];
+        }
+    auto chi_square = [](const std::vector<double>& observed) {
+        double total = 0, chi = 0;
+        for (double o : observed)
+            total += o;
+        const double expected = total / double(observed.size());
+        for (double o : observed)
+            chi += (o - expected) * (o - expected) / expected;
+        return chi;
+    };
+    // Critical values at p = 0.001: 124.8 for 80 degrees of freedom, 26.1 for 8.
+    CHECK(chi_square(count) < 124.8);
+    CHECK(chi_square(next) < 26.1);
+    // Another seed picks differently.
+    const bool differs = cell_image_index(map, 100, {0, 0}) != cell_image_index(map, 99, {0, 0}) ||
+                         cell_image_index(map, 100, {1, 0}) != cell_image_index(map, 99, {1, 0}) ||
+                         cell_image_index(map, 100, {2, 0}) != cell_image_index(map, 99, {2, 0});
+    REQUIRE(differs);
+}
+
+TEST_CASE("a set renders region by region exactly as Sampler::sample", "[cell_set][sampler]") {
+    const TextureMap& map = small_set();
+    const int64_t big = int64_t(1) << 31;
+    for (const Region region : {Region{-333, 71, 437, 291}, Region{big - 300, -big, 300, 200}}) {
+        const cv::Mat out = render_region(map, 77, region, 2);
+        // Several cell images show in it.
+        std::set<uint32_t> seen;
+        for (int64_t j = region.y / kCell - 1; j <= (region.y + region.height) / kCell; ++j)
+            for (int64_t i = region.x / kCell - 1; i <= (region.x + region.width) / kCell; ++i)
+                seen.insert(cell_image_index(map, 77, {i, j}));
+        REQUIRE(seen.size() >= 8);
+        Sampler sampler(map, 77);
+        size_t differing = 0;
+        for (int y = 0; y < region.height; ++y)
+            for (int x = 0; x < region.width; ++x) {
+                const Rgb s = sampler.sample(region.x + x, region.y + y);
+                const cv::Vec3b r = out.at<cv::Vec3b>(y, x);
+                differing += s.r != r[0] || s.g != r[1] || s.b != r[2];
+            }
+        REQUIRE(differing == 0);
+    }
+}
+
+TEST_CASE("a map of one cell image from before cell sets loads and renders as it did",
+          "[cell_set][map_file]") {
+    // Made by the tilejet of commit a473b0c (map build config/demo/green-marble.png --cell 32
+    // --patches 80 --seed 3), with the SHA-256 of its renders from that tilejet's `render
+    // --threads 1 -o X.raw`.
+    const TextureMap map = load_texture_map(std::filesystem::path(TILEJET_SOURCE_DIR) /
+                                            "tests/synth/data/legacy-one-cell-image.tjmap");
+    REQUIRE(map.cell_images.size() == 1);
+    REQUIRE(map.corner_colours == 1);
+    REQUIRE(map.id_hex().substr(0, 16) == "c13f996e9378fb88");
+    CHECK(sha256_hex(render_region(map, 7, {0, 0, 300, 200}, 1)) ==
+          "47fc8958c39417cfc0bd65ca899f64b920afc184be07bfdee95041b907cc49e4");
+    CHECK(sha256_hex(render_region(map, 41237, {-1000000, 77777, 257, 131}, 2)) ==
+          "c1249fe1d9f512328f9c32da85ba93bc665550fd5473ee908ba9ed62605f0bfa");
+    // Saved again, it keeps its id: no CSET section is added to a one-image map.
+    REQUIRE(decode_texture_map(encode_texture_map(map), "again").id == map.id);
+}
+
+TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell set",
+          "[cell_set][quality]") {
+    // The one-image map of the demo design as tilejet made it before cell sets (32 px cells),
+    // against a set of the same design and cell size built now.
+    const TextureMap old_map = load_texture_map(std::filesystem::path(TILEJET_SOURCE_DIR) /
+                                                "tests/synth/data/legacy-one-cell-image.tjmap");
+    BuildParams p;
+    p.cell_size = 32;
+    p.patches = 12;
+    p.candidates = 96;
+    p.seed = 3;
+    const TextureMap set = build_texture_map(demo_exemplar(), p);
+    REQUIRE(set.cell_images.size() == 81);
+    const Region region{1000, -2000, 384, 384};
+    const double old_grid = grid_contrast(render_region(old_map, 7, region), 32, 32);
+    const double new_grid = grid_contrast(render_region(set, 7, region), 32, 32);
+    // The zero point: image quilting of the exemplar has no grid at all.
+    const double quilted =
+        grid_contrast(quilt_texture(demo_exemplar(), {384, 384}, 5, 32).rgb, 32, 32);
+    INFO("grid contrast: one image " << old_grid << ", cell set " << new_grid << ", quilt "
+                                     << quilted);
+    CHECK(std::abs(quilted) < 0.05);
+    CHECK(old_grid > 0.5);
+    // What is left is the thin frames that neighbours share (a quarter block wide).
+    CHECK(new_grid < 0.15);
+}
