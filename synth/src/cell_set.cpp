@@ -24,6 +24,8 @@ constexpr double kMatchTolerance = 0.1;
 // autocorrelation peaked at whole cells (demo design: periodicity 1.9 against 1.0 with two);
 // with three or more the blocks matched so much worse that the cells showed as squares.
 constexpr int kMinChoices = 2;
+// Block searches look at a random window of the source this many positions across.
+constexpr int kSearchWindow = 384;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
 struct Canvas {
@@ -120,7 +122,10 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     const OffsetSearch search{
         source_lab,
         [&](cv::Point corner) { return !lattice || lattice->allows(corner - rect.tl() - origin); },
-        kMatchTolerance, kMinChoices, std::max(4, overlap / 2)};
+        kMatchTolerance,
+        kMinChoices,
+        std::max(4, overlap / 2),
+        kSearchWindow};
     std::optional<cv::Point> corner;
     if (cv::countNonZero(mask) > 0) corner = match_offset(search, canvas.lab(rect), mask, rng);
     if (!corner) {  // nothing to match yet (or no lattice offset fits): anywhere

@@ -25,6 +25,10 @@ struct OffsetSearch {
     // 10%, and pieces that see the same neighbours would all copy the same place.
     int min_choices = 1;
     int spread = 8;
+    // Searches a random window of the source this many positions across (0: all of it), as
+    // quilting.cpp does on large exemplars: a set quilts over a thousand blocks, and the search
+    // over a 512 px source took a 512 px map build past its minute.
+    int window = 0;
 };
 
 // The source position of `old_lab`'s top-left pixel (CV_32FC3 window of what the plane shows)
