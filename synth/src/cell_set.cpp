@@ -203,10 +203,6 @@ void CellSet::choose_corner_blocks() {
     }
 }
 
-cv::Mat CellSet::corner_block(uint32_t colour) const {
-    return source_rgb_(cv::Rect(corner_source_[colour], cv::Size(2 * w_, 2 * w_)));
-}
-
 cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b) const {
     // Strip coordinates: the first vertex's block at the origin, the second's a cell further.
     const cv::Size size =

@@ -43,8 +43,6 @@ class CellSet {
     // `source_lab` its to_lab().
     CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params);
 
-    int corner_colours() const { return k_; }
-    int frame() const { return w_; }  // w: the shared frame's width inside each cell, in px
     size_t size() const { return images_.size(); }
     // Cell image tl + K tr + K^2 bl + K^3 br (the order of corner_colours.hpp), CV_8UC3 R,G,B.
     const cv::Mat& image(size_t index) const { return images_[index]; }
@@ -64,7 +62,6 @@ class CellSet {
     void choose_corner_blocks();
     cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b) const;
     cv::Mat make_image(size_t index) const;
-    cv::Mat corner_block(uint32_t colour) const;
 
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;
