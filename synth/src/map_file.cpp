@@ -231,7 +231,6 @@ std::vector<Section> content_sections(const TextureMap& map) {
         out.push_back({"OVLA", uint32_t(t), std::move(oa.bytes)});
         out.push_back({"OVLB", uint32_t(t), std::move(ob.bytes)});
     }
-
     return out;
 }
 
@@ -423,7 +422,6 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         oa.done(), ob.done();
         map.cell_images.push_back(std::move(c));
     }
-
     {
         Reader r = section("IDNT", 0);
         auto id = r.take(32, "map id");

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -69,8 +70,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
     const int64_t first_column = detail::floor_div(x0, cw);
     const size_t columns = size_t(detail::floor_div(x1 - 1, cw) - first_column + 1);
     std::vector<const cv::Mat*> row_images(columns);
-    int64_t images_row = 0;
-    bool images_valid = false;
+    std::optional<int64_t> images_row;  // the row of cells row_images holds
 
     std::vector<uint8_t> strip(size_t(strip_rows) * row_bytes);
     std::vector<Shown> reaching;  // patches that reach the current strip, and maybe beyond
@@ -79,11 +79,11 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
         const int64_t y0 = region.y + s0, y1 = region.y + s1;
         for (int64_t y = y0; y < y1; ++y) {
             const int64_t cell_j = detail::floor_div(y, ch);
-            if (!images_valid || cell_j != images_row) {
+            if (images_row != cell_j) {
                 for (size_t c = 0; c < columns; ++c)
                     row_images[c] =
                         &map.cell_images[colours.image(first_column + int64_t(c), cell_j)].rgb;
-                images_row = cell_j, images_valid = true;
+                images_row = cell_j;
             }
             const int cell_y = int(y - cell_j * ch);
             uint8_t* dst = strip.data() + size_t(y - y0) * row_bytes;

@@ -30,6 +30,19 @@ const synth::TextureMap& small_map() {
     return map;
 }
 
+size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
+                             const synth::Region& region, const cv::Mat& rendered) {
+    synth::Sampler sampler(map, seed);
+    size_t unlike = 0;
+    for (int y = 0; y < region.height; ++y)
+        for (int x = 0; x < region.width; ++x) {
+            const synth::Rgb s = sampler.sample(region.x + x, region.y + y);
+            const cv::Vec3b r = rendered.at<cv::Vec3b>(y, x);
+            unlike += !(s == synth::Rgb{r[0], r[1], r[2]});
+        }
+    return unlike;
+}
+
 TempDir::TempDir() {
     std::random_device rd;
     path_ = std::filesystem::temp_directory_path() /

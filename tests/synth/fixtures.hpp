@@ -5,6 +5,7 @@
 #include <string>
 
 #include "tilejet/synth/lattice.hpp"
+#include "tilejet/synth/sampler.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::test {
@@ -17,6 +18,11 @@ cv::Vec3d mean_lab(const cv::Mat& rgb);
 
 // A small one-image map of the demo exemplar (64 px cells, 160 patches), built once per run.
 const synth::TextureMap& small_map();
+
+// How many pixels of `rendered` (render_region of `region`, R,G,B) differ from what
+// Sampler::sample gives for the same map and seed.
+size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
+                             const synth::Region& region, const cv::Mat& rendered);
 
 // A fresh directory under the system temp dir, removed when the object goes away.
 class TempDir {
