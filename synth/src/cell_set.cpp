@@ -16,22 +16,29 @@ namespace {
 
 enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream };
 
-// Quilting's own tolerance (design.md section 2.2): a block is drawn among the source windows
-// within 10% of the best match.
-constexpr double kMatchTolerance = 0.1;
-// Blocks are drawn among at least this many distinct good matches (offset_matching.hpp):
-// with one, images that share a frame's side copied the same blocks along it, and the wall's
-// autocorrelation peaked at whole cells (demo design: periodicity 1.9 against 1.0 with two);
-// with three or more the blocks matched so much worse that the cells showed as squares.
-constexpr int kMinChoices = 2;
 // Block searches look at a random window of the source this many positions across.
 constexpr int kSearchWindow = 384;
+// Each block takes the best seam of this many best-matching windows.
+constexpr size_t kCutCandidates = 6;
+// Images are made this many at a time (see the constructor).
+constexpr size_t kImageBatch = 8;
+// Copying a source pixel once more costs this share of the source's variance per overlap pixel
+// in the block search: 0.1 still left flat brown bands of strip round marble's cells, 0.5 keeps
+// its veins and its colours in every part of the set.
+constexpr double kUsageCost = 0.5;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
 struct Canvas {
     cv::Mat rgb, lab;
     cv::Mat known;   // CV_8U, 255 where the canvas already shows something
     cv::Mat locked;  // CV_8U, 255 where it must keep what it shows: what neighbours share
+    // Blocks quilted in, and blocks of other canvases this one must not copy again at the same
+    // place: the same source at the same place in two images repeats on the cell grid.
+    std::vector<Placement> placed;
+    const std::vector<Placement>* avoid = nullptr;
+    // How often each source pixel has been copied into the set so far (CV_32F), or none.
+    const cv::Mat* usage = nullptr;
+    double usage_weight = 0;  // match cost of copying a pixel once more, per overlap pixel
 
     explicit Canvas(cv::Size size)
         : rgb(size, CV_8UC3, cv::Scalar::all(0)),
@@ -70,39 +77,68 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
       ch_(params.cell.height) {
     if (k_ < 2) throw SynthError("a cell set needs at least 2 corner colours");
     const int side = std::min(cw_, ch_);
-    // Blocks of a quarter cell (design.md section 2.2), overlaps of a quarter block, a little
-    // wider than the design's sixth so that seams can find where blocks agree. Half-cell blocks
-    // with half-block overlaps scored better on texture energy (1.12 times quilting's on the
-    // demo design) but, from a 256 px exemplar, put the same few best-matching blocks in cell
-    // after cell: a wall of repeated veins (periodicity 2.6).
-    // The frame is thin, since what neighbours share is the same in every image with those
-    // corners and repeats as often; only its outer pixel is locked, and the cells' own blocks
-    // cut into the rest.
-    block_ = std::max(8, side / 4);
-    overlap_ = std::max(2, block_ / 4);
-    w_ = std::max(3, side / 16);
+    // Measured on the corpus by eye and by texture energy both ways (texture_energy.hpp):
+    //  - cells are quilted with blocks of half a cell overlapping by half a block, so that cuts
+    //    have room to find where blocks agree. Quarter-cell blocks chopped veins and grains
+    //    into squares; half-cell blocks used to repeat the same few best matches in cell after
+    //    cell (periodicity 2.6 on the demo design), which the usage cost below now prevents;
+    //  - strips, thin, are quilted with blocks of a quarter cell, overlaps of a quarter block;
+    //  - the frame is an eighth of the cell: with a sixteenth, the cuts of the two cells on
+    //    either side of an edge ran a few pixels apart and drew a line of strip along every
+    //    cell border. Only its outer pixel is locked: the cells' own blocks cut into the rest;
+    //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
+    //    round as squares, the same square at a third of all vertices.
+    block_ = std::max(8, side / 2);
+    overlap_ = std::max(2, block_ / 2);
+    strip_block_ = std::max(8, side / 4);
+    strip_overlap_ = std::max(2, strip_block_ / 4);
+    w_ = std::max(3, side / 8);
+    c_ = std::max(2, w_ / 3);
     if (source_rgb.cols < cw_ + 2 * w_ + 2 || source_rgb.rows < ch_ + 2 * w_ + 2)
         throw SynthError("the source is too small for a cell set of this cell size");
 
+    cv::Scalar mean, deviation;
+    cv::meanStdDev(source_lab, mean, deviation);
+    usage_weight_ = kUsageCost * deviation.dot(deviation);
     choose_corner_blocks();
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
-    parallel_for(2 * kinds, params.threads, [&](size_t i) {
+    cv::Mat usage(source_lab.size(), CV_32F, cv::Scalar(0));
+    const auto count = [&](const std::vector<Placement>& blocks) {
+        for (const Placement& p : blocks)
+            usage(cv::Rect(p.source, p.at.size())) += 1;
+    };
+    // One after another: each strip sees what the strips before it copied.
+    for (size_t i = 0; i < 2 * kinds; ++i) {
         const uint32_t a = uint32_t(i % kinds % size_t(k_)), b = uint32_t(i % kinds / size_t(k_));
-        if (i < kinds)
-            horizontal_[i] = make_strip(true, a, b);
-        else
-            vertical_[i - kinds] = make_strip(false, a, b);
-    });
+        std::vector<Placement> blocks;
+        (i < kinds ? horizontal_[i] : vertical_[i - kinds]) =
+            make_strip(i < kinds, a, b, usage, blocks);
+        count(blocks);
+    }
+    // Images are made in batches of a fixed size, whatever the threads, so that each avoids the
+    // blocks of the batches before it and the set stays the same bytes on every machine.
     images_.resize(kinds * kinds);
-    parallel_for(images_.size(), params.threads, [&](size_t m) { images_[m] = make_image(m); });
+    std::vector<Placement> placed;
+    for (size_t begin = 0; begin < images_.size(); begin += kImageBatch) {
+        const size_t end = std::min(images_.size(), begin + kImageBatch);
+        std::vector<std::vector<Placement>> batch(end - begin);
+        parallel_for(end - begin, params.threads, [&](size_t i) {
+            images_[begin + i] = make_image(begin + i, placed, usage, batch[i]);
+        });
+        for (const auto& b : batch) {
+            placed.insert(placed.end(), b.begin(), b.end());
+            count(b);
+        }
+    }
 }
 
 namespace {
 
-// Where `canvas`'s unknown pixels inside `rect` should copy from, and the seam: the source
-// window that best matches the known pixels there (within the tolerance, lattice translations
-// only on a lattice), then a minimum-cost cut through the known pixels near the unknown ones.
+// Where `canvas`'s unknown pixels inside `rect` should copy from, and the seam: of the source
+// windows that best match the known pixels there (plus the cost of copying much-used source
+// again; lattice translations only on a lattice), the one whose minimum-cost cut through the
+// known pixels near the unknown ones is cheapest per pixel of seam.
 // The cut may replace known pixels within `overlap` of the unknown ones, never the rest.
 // `origin` is the plane position of the canvas's top-left pixel relative to a lattice point.
 void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Mat& source_rgb,
@@ -119,25 +155,60 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     cv::Mat mask;
     cv::Mat overlap_band = known & near;
     overlap_band.convertTo(mask, CV_32F, 1.0 / 255);
-    const OffsetSearch search{
-        source_lab,
-        [&](cv::Point corner) { return !lattice || lattice->allows(corner - rect.tl() - origin); },
-        kMatchTolerance,
-        kMinChoices,
-        std::max(4, overlap / 2),
-        kSearchWindow};
-    std::optional<cv::Point> corner;
-    if (cv::countNonZero(mask) > 0) corner = match_offset(search, canvas.lab(rect), mask, rng);
-    if (!corner) {  // nothing to match yet (or no lattice offset fits): anywhere
-        corner = cv::Point(rng.range(0, source_lab.cols - rect.width),
-                           rng.range(0, source_lab.rows - rect.height));
-        if (lattice)
-            *corner =
-                rect.tl() + origin + lattice->nearest(cv::Point2d(*corner - rect.tl() - origin));
-        corner->x = std::clamp(corner->x, 0, source_lab.cols - rect.width);
-        corner->y = std::clamp(corner->y, 0, source_lab.rows - rect.height);
+    // Source windows within this distance of one another, copied to places within it, show
+    // the same texture at the same place of the cell.
+    const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
+    cv::Mat forbidden;
+    if (canvas.avoid)
+        for (const Placement& p : *canvas.avoid) {
+            const cv::Point d = p.at.tl() - rect.tl();
+            if (std::max(std::abs(d.x), std::abs(d.y)) >= same_place) continue;
+            if (forbidden.empty()) forbidden = cv::Mat::zeros(source_lab.size(), CV_8U);
+            const cv::Rect around(p.source - cv::Point(same_place - 1, same_place - 1),
+                                  cv::Size(2 * same_place - 1, 2 * same_place - 1));
+            forbidden(around & cv::Rect({0, 0}, source_lab.size())).setTo(255);
+        }
+    // Sources already copied often cost more: best matches alone favour the few calm places
+    // of a source that fit anything, and a set of them shows one motif over and over while
+    // the source's veins and grains go missing.
+    cv::Mat penalty;
+    if (canvas.usage) {
+        cv::Mat used = canvas.usage->clone();
+        for (const Placement& p : canvas.placed)
+            used(cv::Rect(p.source, p.at.size())) += 1;
+        cv::Mat sums;
+        cv::integral(used, sums, CV_64F);
+        const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
+        penalty.create(py, px, CV_32F);
+        const double per_use = canvas.usage_weight * cv::sum(mask)[0] / double(rect.area());
+        for (int y = 0; y < py; ++y)
+            for (int x = 0; x < px; ++x) {
+                const double s = sums.at<double>(y + rect.height, x + rect.width) -
+                                 sums.at<double>(y, x + rect.width) -
+                                 sums.at<double>(y + rect.height, x) + sums.at<double>(y, x);
+                penalty.at<float>(y, x) = float(per_use * s);
+            }
     }
-    const cv::Rect from(*corner, rect.size());
+    OffsetSearch search{source_lab,
+                        [&](cv::Point corner) {
+                            return (forbidden.empty() || !forbidden.at<uint8_t>(corner)) &&
+                                   (!lattice || lattice->allows(corner - rect.tl() - origin));
+                        },
+                        std::max(4, overlap / 2), kSearchWindow};
+    if (!penalty.empty()) search.penalty = &penalty;
+    std::vector<cv::Point> candidates;
+    if (cv::countNonZero(mask) > 0)
+        candidates = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
+    if (candidates.empty()) {  // nothing to match yet (or no lattice offset fits): anywhere
+        cv::Point corner(rng.range(0, source_lab.cols - rect.width),
+                         rng.range(0, source_lab.rows - rect.height));
+        if (lattice)
+            corner =
+                rect.tl() + origin + lattice->nearest(cv::Point2d(corner - rect.tl() - origin));
+        corner.x = std::clamp(corner.x, 0, source_lab.cols - rect.width);
+        corner.y = std::clamp(corner.y, 0, source_lab.rows - rect.height);
+        candidates.push_back(corner);
+    }
     std::vector<Pin> pins(size_t(rect.area()));
     for (int y = 0; y < rect.height; ++y)
         for (int x = 0; x < rect.width; ++x) {
@@ -150,7 +221,16 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             else
                 pin = near.at<uint8_t>(y, x) ? Pin::Free : Pin::Old;
         }
-    const Cut cut = min_cut(canvas.lab(rect), source_lab(from), pins);
+    // The best-matching windows, judged by the seam their cut would leave (what shows, and what
+    // texture energy counts), not by the overlap's mean difference alone.
+    Cut cut;
+    cv::Rect from;
+    for (const cv::Point& corner : candidates) {
+        const cv::Rect window(corner, rect.size());
+        Cut c = min_cut(canvas.lab(rect), source_lab(window), pins);
+        if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
+    }
+    canvas.placed.push_back({rect, from.tl()});
     for (int y = 0; y < rect.height; ++y)
         for (int x = 0; x < rect.width; ++x)
             if (cut.take_new[size_t(y) * size_t(rect.width) + size_t(x)]) {
@@ -181,7 +261,7 @@ void quilt_area(Canvas& canvas, const cv::Rect& area, int block, int overlap,
 void CellSet::choose_corner_blocks() {
     // Spread over the source: each the farthest of a few random draws from those taken.
     Rng rng(hash_combine(params_.seed, kCornerStream));
-    const int x_hi = source_rgb_.cols - 2 * w_, y_hi = source_rgb_.rows - 2 * w_;
+    const int x_hi = source_rgb_.cols - 2 * c_, y_hi = source_rgb_.rows - 2 * c_;
     for (int c = 0; c < k_; ++c) {
         cv::Point best(-1, -1);
         double best_distance = -1;
@@ -190,8 +270,8 @@ void CellSet::choose_corner_blocks() {
             // On a lattice the vertex, w px inside the block, copies a lattice translation of
             // itself, as every cell corner is a lattice point.
             if (params_.lattice)
-                s = params_.lattice->nearest({double(s.x + w_), double(s.y + w_)}) -
-                    cv::Point(w_, w_);
+                s = params_.lattice->nearest({double(s.x + c_), double(s.y + c_)}) -
+                    cv::Point(c_, c_);
             if (s.x < 0 || s.y < 0 || s.x > x_hi || s.y > y_hi) continue;
             double distance = 1e300;
             for (const cv::Point& other : corner_source_)
@@ -203,47 +283,88 @@ void CellSet::choose_corner_blocks() {
     }
 }
 
-cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b) const {
+cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::Mat& usage,
+                            std::vector<Placement>& placed) const {
     // Strip coordinates: the first vertex's block at the origin, the second's a cell further.
     const cv::Size size =
         horizontal ? cv::Size(cw_ + 2 * w_, 2 * w_) : cv::Size(2 * w_, ch_ + 2 * w_);
     Canvas canvas(size);
     const cv::Point second = horizontal ? cv::Point(cw_, 0) : cv::Point(0, ch_);
-    const cv::Rect block_a(corner_source_[a], cv::Size(2 * w_, 2 * w_));
-    const cv::Rect block_b(corner_source_[b], cv::Size(2 * w_, 2 * w_));
-    canvas.paste(source_rgb_(block_a), source_lab_(block_a), {0, 0});
-    canvas.paste(source_rgb_(block_b), source_lab_(block_b), second);
+    const cv::Rect block_a(corner_source_[a], cv::Size(2 * c_, 2 * c_));
+    const cv::Rect block_b(corner_source_[b], cv::Size(2 * c_, 2 * c_));
+    const cv::Point core(w_ - c_, w_ - c_);  // the vertex lies w px in, c px into the core
+    canvas.paste(source_rgb_(block_a), source_lab_(block_a), core);
+    canvas.paste(source_rgb_(block_b), source_lab_(block_b), second + core);
     Rng rng(hash_combine(hash_combine(params_.seed, kStripStream),
                          uint64_t(horizontal) * 65536 + uint64_t(a) * uint64_t(k_) + b));
     // The corner blocks stay whole: the four quarters around a vertex come from four strips,
     // and meet seamlessly only through the block they all hold.
     canvas.locked.setTo(255, canvas.known);
+    canvas.usage = &usage;
+    canvas.usage_weight = usage_weight_;
     // The strip's top-left pixel lies (w, w) before its first vertex, a lattice point.
-    quilt_area(canvas, cv::Rect({0, 0}, size), block_, overlap_, source_rgb_, source_lab_,
-               params_.lattice, {-w_, -w_}, rng);
+    quilt_area(canvas, cv::Rect({0, 0}, size), strip_block_, strip_overlap_, source_rgb_,
+               source_lab_, params_.lattice, {-w_, -w_}, rng);
+    placed = std::move(canvas.placed);
     return canvas.rgb;
 }
 
-cv::Mat CellSet::make_image(size_t index) const {
+cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
+                            std::vector<Placement>& placed) const {
     const size_t k = size_t(k_);
     const uint32_t tl = uint32_t(index % k), tr = uint32_t(index / k % k),
                    bl = uint32_t(index / k / k % k), br = uint32_t(index / k / k / k);
     Canvas canvas({cw_, ch_});
-    const auto paste_rgb = [&](const cv::Mat& rgb, const cv::Rect& from, cv::Point at) {
-        const cv::Mat piece = rgb(from);
-        canvas.paste(piece, to_lab(piece), at);
-    };
-    // The frame: the cell's halves of its four strips (which hold the corner blocks' quarters).
-    paste_rgb(horizontal_[tl + k * tr], cv::Rect(w_, w_, cw_, w_), {0, 0});
-    paste_rgb(horizontal_[bl + k * br], cv::Rect(w_, 0, cw_, w_), {0, ch_ - w_});
-    paste_rgb(vertical_[tl + k * bl], cv::Rect(w_, w_, w_, ch_), {0, 0});
-    paste_rgb(vertical_[tr + k * br], cv::Rect(0, w_, w_, ch_), {cw_ - w_, 0});
+    // The frame: the cell's halves of its four strips. In each corner the horizontal and the
+    // vertical strip overlap; the corner is cut between them, the horizontal one along the
+    // horizontal edge and the vertical one along the vertical edge, as each neighbour across
+    // those edges shows the same strip there. At the vertex both hold the corner's core.
+    cv::Mat h_rgb(ch_, cw_, CV_8UC3, cv::Scalar::all(0)), v_rgb = h_rgb.clone();
+    horizontal_[tl + k * tr](cv::Rect(w_, w_, cw_, w_)).copyTo(h_rgb(cv::Rect(0, 0, cw_, w_)));
+    horizontal_[bl + k * br](cv::Rect(w_, 0, cw_, w_))
+        .copyTo(h_rgb(cv::Rect(0, ch_ - w_, cw_, w_)));
+    vertical_[tl + k * bl](cv::Rect(w_, w_, w_, ch_)).copyTo(v_rgb(cv::Rect(0, 0, w_, ch_)));
+    vertical_[tr + k * br](cv::Rect(0, w_, w_, ch_)).copyTo(v_rgb(cv::Rect(cw_ - w_, 0, w_, ch_)));
+    const cv::Mat h_lab = to_lab(h_rgb), v_lab = to_lab(v_rgb);
+    for (const cv::Rect band : {cv::Rect(0, 0, cw_, w_), cv::Rect(0, ch_ - w_, cw_, w_)})
+        canvas.paste(h_rgb(band), h_lab(band), band.tl());
+    for (const cv::Rect band : {cv::Rect(0, 0, w_, ch_), cv::Rect(cw_ - w_, 0, w_, ch_)})
+        canvas.paste(v_rgb(band), v_lab(band), band.tl());
+    for (const bool right : {false, true})
+        for (const bool bottom : {false, true}) {
+            const cv::Rect corner(right ? cw_ - w_ : 0, bottom ? ch_ - w_ : 0, w_, w_);
+            std::vector<Pin> pins(size_t(w_) * size_t(w_));
+            for (int y = 0; y < w_; ++y)
+                for (int x = 0; x < w_; ++x) {
+                    // u runs from the vertical edge inwards, v from the horizontal edge.
+                    const int u = right ? w_ - 1 - x : x, v = bottom ? w_ - 1 - y : y;
+                    Pin& pin = pins[size_t(y) * size_t(w_) + size_t(x)];
+                    if (v == 0 || u == w_ - 1)
+                        pin = Pin::Old;
+                    else if (u == 0 || v == w_ - 1)
+                        pin = Pin::New;
+                    else
+                        pin = Pin::Free;
+                }
+            const Cut cut = min_cut(h_lab(corner), v_lab(corner), pins);
+            for (int y = 0; y < w_; ++y)
+                for (int x = 0; x < w_; ++x) {
+                    const bool vertical = cut.take_new[size_t(y) * size_t(w_) + size_t(x)];
+                    const cv::Point at = corner.tl() + cv::Point(x, y);
+                    canvas.rgb.at<cv::Vec3b>(at) = (vertical ? v_rgb : h_rgb).at<cv::Vec3b>(at);
+                    canvas.lab.at<cv::Vec3f>(at) = (vertical ? v_lab : h_lab).at<cv::Vec3f>(at);
+                }
+        }
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge.
     canvas.locked.setTo(255);
     canvas.locked(cv::Rect(1, 1, cw_ - 2, ch_ - 2)).setTo(0);
+    canvas.avoid = &avoid;
+    canvas.usage = &usage;
+    canvas.usage_weight = usage_weight_;
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
     quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
                params_.lattice, {0, 0}, rng);
+    placed = std::move(canvas.placed);
     return canvas.rgb;
 }
 

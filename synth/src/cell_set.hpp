@@ -27,6 +27,12 @@
 
 namespace tilejet::synth::detail {
 
+// A block quilted into a cell image: its rectangle there and where in the source it copies from.
+struct Placement {
+    cv::Rect at;
+    cv::Point source;
+};
+
 struct CellSetParams {
     cv::Size cell;
     int corner_colours = 2;  // K: the set has K^4 cell images
@@ -60,13 +66,18 @@ class CellSet {
 
   private:
     void choose_corner_blocks();
-    cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b) const;
-    cv::Mat make_image(size_t index) const;
+    cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::Mat& usage,
+                       std::vector<Placement>& placed) const;
+    // Image `index`, none of whose blocks copies a source window of `avoid` to the same place;
+    // its own blocks go to `placed`.
+    cv::Mat make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
+                       std::vector<Placement>& placed) const;
 
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;
     CellSetParams params_;
-    int k_, cw_, ch_, w_, block_, overlap_;
+    int k_, cw_, ch_, w_, c_, block_, overlap_, strip_block_, strip_overlap_;
+    double usage_weight_ = 0;
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
     // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.
