@@ -41,7 +41,8 @@ namespace {
 // periods of any practical cell, and an FFT that takes well under a second.
 constexpr int kPeriodicityWindow = 1024;
 constexpr size_t kEnergySamples = 30000;
-constexpr double kCanvasMillimetres = 2000;  // the factory canvas: 2 m x 2 m
+constexpr double kCompletenessArea = 1 << 20;  // px of wall the exemplar is looked for in, at least
+constexpr double kCanvasMillimetres = 2000;    // the factory canvas: 2 m x 2 m
 
 struct EvalOptions {
     std::string map, output, tile_size, profile, exemplar;
@@ -154,7 +155,20 @@ MethodSection measure(const std::string& name, const std::string& description,
         {"exemplar_quilt_lag", {shared.reference_peak.lag.x, shared.reference_peak.lag.y}}};
 
     progress.say(name + ": texture energy");
-    j["texture_energy"] = shared.energy->measure(wall.tiles, kEnergySamples, o.seed);
+    // Both ways (texture_energy.hpp): the wall's neighbourhoods against the exemplar's, and
+    // the exemplar's against those of a stretch of wall a few times the exemplar's area.
+    const double coherence = shared.energy->measure(wall.tiles, kEnergySamples, o.seed);
+    const double area = std::max(kCompletenessArea, 4.0 * double(shared.exemplar.total()));
+    std::vector<cv::Mat> stretch;
+    for (double indexed = 0; indexed < area && stretch.size() < wall.tiles.size();) {
+        stretch.push_back(wall.tiles[stretch.size()]);
+        indexed += double(stretch.back().total());
+    }
+    const double completeness =
+        synth::TextureEnergy(stretch, o.threads).measure({shared.exemplar}, kEnergySamples, o.seed);
+    j["texture_energy"] = (coherence + completeness) / 2;
+    j["texture_coherence"] = coherence;
+    j["texture_completeness"] = completeness;
 
     progress.say(name + ": seams");
     const synth::SeamStats seams = synth::measure_seams(wall, shared.exemplar_steps, o.threads);
@@ -310,9 +324,11 @@ void run_eval(const EvalOptions& o) {
             std::to_string(shared.periodicity_window.width) + "x" +
             std::to_string(shared.periodicity_window.height) +
             " px, divided by the same for the exemplar quilted to that size",
-        "texture energy: " + std::to_string(kEnergySamples) +
-            " random 8x8 patches per wall, RMS CIELab distance per pixel to the nearest "
-            "exemplar patch",
+        "texture energy: the mean of coherence (" + std::to_string(kEnergySamples) +
+            " random 8x8 patches of the wall, RMS CIELab distance per pixel to the nearest "
+            "exemplar patch) and completeness (as many of the exemplar, to the nearest patch of "
+            "a stretch of wall of 4 times its area or 1 Mpx at least): a wall that repeats one "
+            "calm corner of the exemplar is coherent but not complete",
         "patch coverage: share of the tilejet wall's pixels (every tile's own region of the "
         "plane) that show a patch rather than the cell image",
         "repeat curve: every window position hashed (2D polynomial hash modulo 2^61-1); equal "

@@ -155,7 +155,8 @@ std::string gates_html(const ReportPage& page) {
          "tilejet wall's highest autocorrelation peak, relative to the exemplar quilted to the "
          "same size");
     gate("texture_energy vs quilt", g.texture_energy_vs_quilt, g.texture_energy_pass(),
-         "tilejet's texture energy divided by the quilt baseline's");
+         "tilejet's texture energy divided by the quilt baseline's, both ways: the wall's "
+         "8x8 neighbourhoods against the exemplar's and the exemplar's against the wall's");
     h << "<div class='gate'><div class='label'>patch coverage</div><div class='value'>"
       << gate_figure(g.patch_coverage * 100)
       << " %</div><div class='what'>share of tilejet's wall showing a patch; the rest shows the "
@@ -264,8 +265,10 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
     row("patch_coverage", [](const auto& j) {
         return j.contains("patch_coverage") ? j["patch_coverage"] : nlohmann::ordered_json();
     });
-    for (const char* key : {"periodicity", "texture_energy"})
-        row(key, [&](const auto& j) { return j[key]; });
+    for (const char* key :
+         {"periodicity", "texture_energy", "texture_coherence", "texture_completeness"})
+        row(key,
+            [&](const auto& j) { return j.contains(key) ? j[key] : nlohmann::ordered_json(); });
     row("texture_energy / quilt's", [&](const auto& j) {
         const double reference = quilt_energy(page);
         return reference > 0

@@ -22,3 +22,39 @@ TEST_CASE("texture energy: an exemplar crop is near 0, an unrelated image is hig
     CHECK(mean_colour > crop + 2);
     CHECK(mean_colour < noise);
 }
+
+TEST_CASE("texture completeness: a wall that repeats one corner of the exemplar is incomplete",
+          "[quality]") {
+    const cv::Mat& exemplar = test::demo_exemplar();
+    // Walls of the same area: the exemplar tiled whole, and one 64 px corner of it tiled.
+    cv::Mat whole, corner;
+    cv::repeat(exemplar, 2, 2, whole);
+    cv::repeat(exemplar(cv::Rect(0, 0, 64, 64)), 2 * exemplar.rows / 64, 2 * exemplar.cols / 64,
+               corner);
+    const auto completeness = [&](const cv::Mat& wall) {
+        return synth::TextureEnergy(std::vector<cv::Mat>{wall}, 2, wall.total())
+            .measure({exemplar}, 5000, 1);
+    };
+    const synth::TextureEnergy coherence(exemplar, 2);
+    // One way, the corner's wall is nearly as good as the whole exemplar's (only the joins
+    // between its copies are not in the exemplar) ...
+    const double corner_coherence = coherence.measure({corner}, 5000, 1);
+    CHECK(coherence.measure({whole}, 5000, 1) < 0.5);
+    // ... the other way, only one of them holds the exemplar.
+    CHECK(completeness(whole) < 0.5);
+    CHECK(completeness(corner) > 2 * corner_coherence);
+}
+
+TEST_CASE("texture energy: several images index as one", "[quality]") {
+    const cv::Mat& exemplar = test::demo_exemplar();
+    const cv::Mat left = exemplar(cv::Rect(0, 0, exemplar.cols / 2, exemplar.rows)).clone();
+    const cv::Mat right =
+        exemplar(cv::Rect(exemplar.cols / 2, 0, exemplar.cols / 2, exemplar.rows)).clone();
+    const synth::TextureEnergy halves(std::vector<cv::Mat>{left, right}, 2);
+    const synth::TextureEnergy only_left(left, 2);
+    const cv::Mat from_right = right(cv::Rect(20, 20, 80, 80)).clone();
+    CHECK(halves.measure({from_right}, 3000, 1) < 0.5);
+    CHECK(only_left.measure({from_right}, 3000, 1) > 1);
+    CHECK_THROWS_WITH(synth::TextureEnergy(std::vector<cv::Mat>{}, 1),
+                      Catch::Contains("needs an image"));
+}

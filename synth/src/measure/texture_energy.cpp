@@ -20,7 +20,6 @@ constexpr int kReducedDims = 24;
 constexpr int kCandidates = 4;
 constexpr int kChecks =
     32;  // kd-tree leaves searched per query: 64 costs twice as much for 3% lower energy
-constexpr size_t kMaxExemplarPatches = 250000;
 constexpr size_t kPcaSample = 20000;
 
 // Writes the 8x8 patch of `lab` (CV_32FC3) at (x, y) as 192 floats.
@@ -34,42 +33,66 @@ void patch_row(const cv::Mat& lab, int x, int y, float* out) {
 }  // namespace
 
 struct TextureEnergy::Index {
-    cv::Mat patches;  // exemplar patches, one per row, 192 floats
+    struct At {
+        uint32_t image;
+        int x, y;
+    };
+    std::vector<cv::Mat> labs;  // the indexed images, CIELab CV_32FC3
+    std::vector<At> at;         // where each indexed patch lies
     cv::PCA pca;
-    cv::Mat reduced;
+    cv::Mat reduced;  // one row of 24 per patch: full patches would take 768 B each
     // One kd-forest per thread: FLANN does not promise that searches share an index safely.
     std::vector<std::unique_ptr<cv::flann::Index>> forests;
+
+    void patch(size_t i, float* out) const { patch_row(labs[at[i].image], at[i].x, at[i].y, out); }
 };
 
-TextureEnergy::TextureEnergy(const cv::Mat& exemplar, int threads) : index_(new Index) {
-    if (exemplar.type() != CV_8UC3 || exemplar.cols < kEnergyPatch || exemplar.rows < kEnergyPatch)
-        throw SynthError("texture energy needs an 8-bit RGB exemplar of at least 8x8 px");
+TextureEnergy::TextureEnergy(const cv::Mat& exemplar, int threads)
+    : TextureEnergy(std::vector<cv::Mat>{exemplar}, threads) {}
+
+TextureEnergy::TextureEnergy(const std::vector<cv::Mat>& images, int threads, size_t max_patches)
+    : index_(new Index) {
+    size_t positions = 0;
+    for (const cv::Mat& image : images) {
+        if (image.type() != CV_8UC3 || image.cols < kEnergyPatch || image.rows < kEnergyPatch)
+            throw SynthError("texture energy needs 8-bit RGB images of at least 8x8 px");
+        positions += size_t(image.cols - kEnergyPatch + 1) * size_t(image.rows - kEnergyPatch + 1);
+    }
+    if (positions == 0) throw SynthError("texture energy needs an image to index");
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
-    const cv::Mat lab = detail::to_lab(exemplar);
-    const size_t nx = size_t(exemplar.cols - kEnergyPatch + 1);
-    const size_t ny = size_t(exemplar.rows - kEnergyPatch + 1);
     int step = 1;
-    while ((nx / size_t(step) + 1) * (ny / size_t(step) + 1) > kMaxExemplarPatches)
+    while (positions / size_t(step * step) > std::max<size_t>(1, max_patches))
         ++step;
-    std::vector<cv::Point> at;
-    for (size_t y = 0; y < ny; y += size_t(step))
-        for (size_t x = 0; x < nx; x += size_t(step))
-            at.emplace_back(int(x), int(y));
-    index_->patches.create(int(at.size()), kDims, CV_32F);
-    for (size_t i = 0; i < at.size(); ++i)
-        patch_row(lab, at[i].x, at[i].y, index_->patches.ptr<float>(int(i)));
+    Index& index = *index_;
+    for (uint32_t i = 0; i < images.size(); ++i) {
+        index.labs.push_back(detail::to_lab(images[i]));
+        for (int y = 0; y <= images[i].rows - kEnergyPatch; y += step)
+            for (int x = 0; x <= images[i].cols - kEnergyPatch; x += step)
+                index.at.push_back({i, x, y});
+    }
 
     cv::Mat sample;
-    const size_t every = std::max<size_t>(1, at.size() / kPcaSample);
-    for (size_t i = 0; i < at.size(); i += every)
-        sample.push_back(index_->patches.row(int(i)));
-    index_->pca =
+    const size_t every = std::max<size_t>(1, index.at.size() / kPcaSample);
+    for (size_t i = 0; i < index.at.size(); i += every) {
+        sample.push_back(cv::Mat(1, kDims, CV_32F));
+        index.patch(i, sample.ptr<float>(sample.rows - 1));
+    }
+    index.pca =
         cv::PCA(sample, cv::noArray(), cv::PCA::DATA_AS_ROW, std::min(kReducedDims, sample.rows));
-    index_->reduced = index_->pca.project(index_->patches);
+    // Projected a slice at a time: a million full patches would take 768 MB at once.
+    constexpr size_t kSlice = 65536;
+    index.reduced.create(int(index.at.size()), index.pca.eigenvectors.rows, CV_32F);
+    detail::parallel_for((index.at.size() + kSlice - 1) / kSlice, threads, [&](size_t slice) {
+        const size_t begin = slice * kSlice, end = std::min(index.at.size(), begin + kSlice);
+        cv::Mat full(int(end - begin), kDims, CV_32F);
+        for (size_t i = begin; i < end; ++i)
+            index.patch(i, full.ptr<float>(int(i - begin)));
+        index.pca.project(full).copyTo(index.reduced.rowRange(int(begin), int(end)));
+    });
     for (int t = 0; t < threads; ++t) {
         std::srand(1);  // FLANN draws its kd-tree splits from rand(): same trees every run
-        index_->forests.push_back(
-            std::make_unique<cv::flann::Index>(index_->reduced, cv::flann::KDTreeIndexParams(4)));
+        index.forests.push_back(
+            std::make_unique<cv::flann::Index>(index.reduced, cv::flann::KDTreeIndexParams(4)));
     }
 }
 
@@ -113,13 +136,14 @@ double TextureEnergy::measure(const std::vector<cv::Mat>& tiles, size_t samples,
         index_->forests[c]->knnSearch(index_->pca.project(queries), indices, dists, kCandidates,
                                       cv::flann::SearchParams(kChecks));
         double sum = 0;
+        cv::Mat candidate(1, kDims, CV_32F);
         for (int q = 0; q < queries.rows; ++q) {
             double best = 1e300;
             for (int k = 0; k < kCandidates; ++k) {
                 const int e = indices.at<int>(q, k);
                 if (e < 0) continue;
-                best = std::min(best,
-                                cv::norm(queries.row(q), index_->patches.row(e), cv::NORM_L2SQR));
+                index_->patch(size_t(e), candidate.ptr<float>());
+                best = std::min(best, cv::norm(queries.row(q), candidate, cv::NORM_L2SQR));
             }
             sum += std::sqrt(best / (kEnergyPatch * kEnergyPatch));
         }

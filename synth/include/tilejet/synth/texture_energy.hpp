@@ -3,6 +3,12 @@
 // Texture energy (design.md section 8; Kwatra et al. 2005): how far the output's small
 // neighbourhoods are from anything in the exemplar. Copy-based output is made of exemplar
 // pieces, so away from seams it is near 0; seams and foreign content raise it.
+//
+// Measured that way alone (coherence), an output that copies one calm corner of the exemplar
+// over and over scores best: quilting does that on marble, a wallpaper of one motif whose
+// veins are gone. The other direction (completeness: how far the exemplar's neighbourhoods are
+// from anything in the output; Simakov et al. 2008, "bidirectional similarity") catches it.
+// Indexing the output instead of the exemplar measures it with the same class.
 
 #include <cstdint>
 #include <memory>
@@ -12,6 +18,7 @@
 namespace tilejet::synth {
 
 inline constexpr int kEnergyPatch = 8;
+inline constexpr size_t kEnergyMaxPatches = 250000;
 
 class TextureEnergy {
   public:
@@ -19,6 +26,10 @@ class TextureEnergy {
     // coarser grid when there would be more than 250 000), reduced by PCA to 24 dimensions
     // for an OpenCV FLANN kd-forest; `threads` searches run side by side.
     explicit TextureEnergy(const cv::Mat& exemplar, int threads = 0);
+    // The patches of several images (e.g. a wall's tiles), `max_patches` at most in all (on a
+    // coarser grid beyond): each costs about 110 bytes.
+    explicit TextureEnergy(const std::vector<cv::Mat>& images, int threads = 0,
+                           size_t max_patches = kEnergyMaxPatches);
     ~TextureEnergy();
     TextureEnergy(const TextureEnergy&) = delete;
     TextureEnergy& operator=(const TextureEnergy&) = delete;
