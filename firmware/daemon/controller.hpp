@@ -26,6 +26,7 @@ struct LineSnapshot {
     int speed_setpoint_mm_s = 0;
     int speed_mm_s = 0;                // measured by the PLC
     std::uint16_t plc_fault_code = 0;  // the PLC's active fault; 0 = none
+    bool counter_fault = false;        // the PLC's tile counter went back or jumped ahead
     std::uint32_t tile_counter = 0;
     int heads_queue = 0;     // tiles the heads hold (as the daemon tracks them)
     int rendered_ahead = 0;  // tiles ready in the render-ahead queue

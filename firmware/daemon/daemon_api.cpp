@@ -109,6 +109,7 @@ json DaemonApi::status() {
            {"speed_setpoint_mm_s", s.speed_setpoint_mm_s},
            {"speed_mm_s", s.speed_mm_s},
            {"plc_fault_code", s.plc_fault_code},
+           {"counter_fault", s.counter_fault},
            {"tile_counter", s.tile_counter},
            {"heads_queue", s.heads_queue},
            {"rendered_ahead", s.rendered_ahead},

@@ -26,6 +26,12 @@ nlohmann::json line_faults(const LineSnapshot& s) {
             "Read the fault on the PLC's display and clear its cause there. The line restarts "
             "when the PLC reports ready.",
             "stop");
+    else if (s.counter_fault)
+        add("plc_counter", "PLC tile counter cannot be trusted: " + s.reason,
+            "The conveyor is stopped and the heads hold their tiles. Check the PLC (did it "
+            "restart?), then press Acknowledge: the controller asks the heads what they hold "
+            "and goes on without printing a tile twice.",
+            "stop");
     else if (s.status == LineStatus::faulted && s.link_up)
         add("faulted", "Line stopped: " + s.reason,
             "Clear the cause shown; the controller goes on by itself when it is gone. If it "

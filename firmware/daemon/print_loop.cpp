@@ -115,6 +115,12 @@ void PrintLoop::turn() {
         state_.set(LineStatus::estop, gpio_->estop_latched() ? "e-stop: release it and acknowledge"
                                                              : "e-stop chain open (PLC)");
         if (draining_) done_ = true;
+    } else if (counter_fault_) {
+        // Held until the operator acknowledges: the PLC that lied once may lie again.
+        if (line_state_.running) line_->stop();
+        set_print_enable(false);
+        state_.set(LineStatus::faulted, *counter_fault_ + ": acknowledge to resync");
+        if (draining_) done_ = true;
     } else if (line_state_.fault_code != 0) {
         gpio_->set(GpioOutput::print_enable, false);
         state_.set(LineStatus::faulted, "PLC fault " + std::to_string(line_state_.fault_code));
@@ -144,6 +150,11 @@ void PrintLoop::handle_commands() {
                 }
                 break;
             case Command::acknowledge:
+                if (counter_fault_) {
+                    log_line("operator: PLC tile counter fault acknowledged");
+                    counter_fault_.reset();
+                    counter_known_ = false;  // counted from the next reading on
+                }
                 try {
                     gpio_->acknowledge_estop();
                     log_line("operator: e-stop acknowledged");
@@ -183,12 +194,19 @@ bool PrintLoop::poll_line() {
         link_up_ = true;
         log_line("PLC link up (tile counter " + std::to_string(line_state_.tile_counter) + ")");
     }
-    if (!counter_known_) {
+    if (counter_fault_) {
+        // Nothing is counted until the operator acknowledges; then counting starts afresh.
+    } else if (!counter_known_) {
         counter_known_ = true;
         counter_ = line_state_.tile_counter;
         earliest_next_ = start;
     } else if (line_state_.tile_counter != counter_) {
         const std::uint32_t arrived = line_state_.tile_counter - counter_;  // wraps at 2^32
+        if (const auto why = implausible_arrivals(arrived, start - prev_poll_start_)) {
+            // Nothing is counted: which tiles passed, and with what ink, is unknown.
+            on_counter_fault(*why);
+            return true;
+        }
         const bool enabled = gpio_->output(GpioOutput::print_enable);
         if (enabled != enabled_at_poll_) {
             // Print-enable changed since the last poll (e-stop latch): whether these tiles
@@ -205,6 +223,36 @@ bool PrintLoop::poll_line() {
     enabled_at_poll_ = enabled_at_read;
     if (!line_state_.running) run_commanded_ = false;
     return true;
+}
+
+std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived,
+                                                           Clock::duration elapsed) const {
+    const std::uint32_t before = counter_, now = line_state_.tile_counter;
+    if (now < before && before - now < (1u << 31))
+        return "PLC tile counter went back from " + std::to_string(before) + " to " +
+               std::to_string(now) + " (PLC restart?)";
+    // At most one tile a pitch at half again the fastest speed the daemon runs the line, and
+    // two for the tile already under the eye when the last poll began.
+    const double fastest = 1.5 * std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    const double pitch_s = config_.drivers.line.tile_pitch_mm / fastest;
+    const double possible = std::chrono::duration<double>(elapsed).count() / pitch_s + 2;
+    if (double(arrived) > possible)
+        return "PLC tile counter jumped from " + std::to_string(before) + " to " +
+               std::to_string(now) + ": " + std::to_string(arrived) + " tiles in " +
+               std::to_string(
+                   std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count()) +
+               " ms, at most " + std::to_string(std::uint64_t(possible)) + " can have passed";
+    return std::nullopt;
+}
+
+void PrintLoop::on_counter_fault(const std::string& why) {
+    set_print_enable(false);
+    line_->stop();
+    run_commanded_ = false;
+    // What the heads printed while the counter lied is unknown: resync before printing again.
+    mirror_certain_ = false;
+    counter_fault_ = why;
+    log_line(why + ": conveyor stopped, print-enable low; acknowledge to resync");
 }
 
 void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound) {
@@ -250,11 +298,17 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         // They had print-enable as the last poll saw it: the e-stop latch (on the GPIO thread)
         // may already have changed the state, so the state cannot say (the soak found a
         // printed tile taken for unprinted, then printed again).
-        if (counter_known_ && st.tile_counter != counter_)
-            on_arrivals(st.tile_counter - counter_, enabled_at_poll_, prev_poll_start_);
+        line_->stop();
+        if (counter_known_ && !counter_fault_ && st.tile_counter != counter_) {
+            const std::uint32_t arrived = st.tile_counter - counter_;
+            line_state_.tile_counter = st.tile_counter;
+            if (const auto why = implausible_arrivals(arrived, Clock::now() - prev_poll_start_))
+                on_counter_fault(*why);
+            else
+                on_arrivals(arrived, enabled_at_poll_, prev_poll_start_);
+        }
         counter_ = st.tile_counter;
         line_state_ = st;
-        line_->stop();
         enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
     } catch (const std::exception& e) {
         mirror_certain_ = false;
@@ -683,6 +737,7 @@ void PrintLoop::publish() {
     s.speed_setpoint_mm_s = line_state_.speed_setpoint_mm_s;
     s.speed_mm_s = line_state_.speed_mm_s;
     s.plc_fault_code = line_state_.fault_code;
+    s.counter_fault = counter_fault_.has_value();
     s.tile_counter = line_state_.tile_counter;
     s.heads_queue = int(mirror_.size());
     s.rendered_ahead = render_.ready();

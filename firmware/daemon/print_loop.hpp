@@ -18,6 +18,7 @@
 #include <deque>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "controller.hpp"
 #include "daemon_config.hpp"
@@ -51,6 +52,10 @@ class PrintLoop {
     void handle_commands();
     void handle_gpio_events(std::chrono::milliseconds wait);
     bool poll_line();
+    // Why `arrived` tiles since the last poll, `elapsed` ago, cannot be true, or nothing.
+    std::optional<std::string> implausible_arrivals(std::uint32_t arrived,
+                                                    Clock::duration elapsed) const;
+    void on_counter_fault(const std::string& why);
     void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
     void on_estop(std::chrono::nanoseconds at);
     void on_link_lost(const std::string& why);
@@ -99,6 +104,9 @@ class PrintLoop {
     bool counter_known_ = false;
     bool enabled_at_poll_ = false;  // print-enable when the last poll read the counter
     std::uint32_t counter_ = 0;
+    // Set when the tile counter went back or jumped further than tiles can travel: the line
+    // stays stopped until the operator acknowledges.
+    std::optional<std::string> counter_fault_;
     Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
     Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
     bool run_commanded_ = false;

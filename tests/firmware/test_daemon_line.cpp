@@ -328,3 +328,57 @@ TEST_CASE("SIGTERM stops the daemon even when the PLC cannot be reached", "[daem
     CHECK(std::chrono::steady_clock::now() - t0 < 5s);
     CHECK(daemon.log().find("stopped") != std::string::npos);
 }
+
+// A PLC that restarts counts tiles from 0 again; one that lies jumps ahead. Before, the
+// daemon took the difference as 4 billion arrivals and walked them one by one: the status
+// froze, the conveyor kept running, stop and SIGTERM went unheard.
+TEST_CASE(
+    "a tile counter that goes back or jumps ahead stops the line until acknowledged, "
+    "and the job still prints every tile once",
+    "[daemon][line][counter]") {
+    const std::string glitch = GENERATE(std::string("back"), std::string("ahead"));
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    const int tiles = 30;
+    const auto id = submit_until_printing(daemon, tiles);
+    const auto counter = line.status()["tile_counter"].get<std::uint32_t>();
+    line.control("counter " + std::to_string(glitch == "back" ? 0u : counter + 1000u));
+    json status;
+    REQUIRE(test::eventually(
+        [&] {
+            status = daemon.request("GET", "/api/status").second;
+            return status["counter_fault"] == true;
+        },
+        3s));
+    INFO(status.dump());
+    CHECK(status["state"] == "faulted");
+    CHECK(status["reason"].get<std::string>().find(glitch == "back" ? "went back" : "jumped") !=
+          std::string::npos);
+    // Stopped and held: nothing moves or prints until the operator acknowledges.
+    REQUIRE(test::eventually([&] { return line.status()["running"] == false; }, 2s));
+    CHECK(line.status()["print_enable"] == false);
+    const auto printed = daemon.job(id)["printed"];
+    std::this_thread::sleep_for(500ms);
+    CHECK(line.status()["running"] == false);
+    CHECK(daemon.job(id)["printed"] == printed);
+    CHECK(status["faults"].dump().find("plc_counter") != std::string::npos);
+    daemon.request("POST", "/api/line/acknowledge", "");
+    wait_done(daemon, id, 30s);
+    check_print_log(line, id, tiles, 0);
+    CHECK(daemon.log().find("PLC tile counter fault acknowledged") != std::string::npos);
+}
+
+TEST_CASE("SIGTERM ends the daemon while a counter fault holds the line", "[daemon][line][term]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    submit_until_printing(daemon, 30);
+    line.control("counter 0");
+    REQUIRE(test::eventually(
+        [&] { return daemon.request("GET", "/api/status").second["counter_fault"] == true; }, 3s));
+    const auto t0 = std::chrono::steady_clock::now();
+    daemon.stop(SIGTERM);
+    CHECK(std::chrono::steady_clock::now() - t0 < 5s);
+    CHECK(line.status()["running"] == false);
+}

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -150,6 +151,11 @@ std::string LineSimulator::control(const std::string& request, ns now) {
             const long us = arg.empty() ? 300 : std::stol(arg);
             if (us <= 0 || us > 1000000) return error("glitch width takes 1..1000000 us");
             gpio_->glitch(GpioInput::photo_eye, now, std::chrono::microseconds(us));
+        } else if (verb == "counter" && !arg.empty()) {
+            // A PLC that restarted counts from 0 again; any other value is a counter that lies.
+            const unsigned long value = std::stoul(arg);
+            if (value > UINT32_MAX) return error("counter takes 0..4294967295");
+            tile_counter_ = std::uint32_t(value);
         } else if (verb == "heads-reset") {
             heads_->reset_buffer();
         } else if (verb == "stop-conveyor") {
