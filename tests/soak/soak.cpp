@@ -109,9 +109,9 @@ class Soak {
     }
 
     void inject_one() {
-        static const char* kinds[] = {"link-drop", "reply-delay", "plc-fault",
-                                      "e-stop",    "glitch",      "daemon-kill"};
-        const std::string kind = kinds[between(0, 5)];
+        static const char* kinds[] = {"link-drop", "reply-delay", "plc-fault",   "e-stop",
+                                      "glitch",    "daemon-kill", "plc-restart", "counter-jump"};
+        const std::string kind = kinds[between(0, 7)];
         ++injected_[kind];
         if (kind == "link-drop") {
             const double seconds = between(2, 20) / 10.0;
@@ -131,6 +131,15 @@ class Soak {
             pause(between(200, 1500));
             line_.control("estop off");
             acknowledge();
+        } else if (kind == "plc-restart" || kind == "counter-jump") {
+            // The PLC's tile counter back to 0 (a PLC restart) or far ahead (a counter that
+            // lies): the daemon stops the line until acknowledged.
+            const auto counter = line_.status()["tile_counter"].get<std::uint32_t>();
+            line_.control("counter " +
+                          std::to_string(kind == "plc-restart"
+                                             ? 0u
+                                             : counter + std::uint32_t(between(50, 5000))));
+            acknowledge_counter_fault();
         } else if (kind == "glitch") {
             line_.control("glitch " + std::to_string(between(50, 1500)));
         } else {
@@ -153,6 +162,24 @@ class Soak {
             if (daemon_.request("GET", "/api/status").second.value("state", "") != "e-stop") return;
             pause(100);
         }
+    }
+
+    // The daemon notices a changed counter at its next poll, unless it was not counting yet
+    // (just restarted, or the link down): then there is nothing to acknowledge.
+    void acknowledge_counter_fault() {
+        const auto seen = [&] {
+            return daemon_.request("GET", "/api/status").second.value("counter_fault", false);
+        };
+        for (int i = 0; i < 20 && !seen(); ++i)
+            pause(100);
+        for (int i = 0; i < 50 && seen(); ++i) {
+            try {
+                daemon_.request("POST", "/api/line/acknowledge", "");
+            } catch (const std::exception&) {
+            }
+            pause(100);
+        }
+        if (seen()) problems_.push_back("a counter fault stayed after 50 acknowledges");
     }
 
     // From the moment the fault is gone until the next tile is printed.
