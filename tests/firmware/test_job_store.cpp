@@ -1,9 +1,12 @@
 // The job store's bookkeeping of tiles on their way to the heads: a send that is taken back
 // must leave the tile to be sent again, whatever was sent after it.
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <random>
 
 #include "../drivers/linesim_process.hpp"
 #include "tilejet/jobs/job_store.hpp"
+#include "tilejet/jobs/sqlite.hpp"
 
 using namespace tilejet;
 
@@ -40,4 +43,117 @@ TEST_CASE("a tile whose send is taken back is sent again, even after newer tiles
     store.mark_sending(job.id, -9, 5);
     store.unmark_sending(job.id, -9);
     CHECK(store.upcoming(job, 5) == V{1, 3, 4});
+}
+
+namespace {
+
+jobs::JobSpec small_spec(int tiles) {
+    jobs::JobSpec spec;
+    spec.map = "/x.tjmap";
+    spec.seed = 1;
+    spec.tiles = tiles;
+    spec.tile_width_mm = spec.tile_height_mm = 100;
+    spec.dpi = 20;
+    return spec;
+}
+
+struct Counts {
+    std::int64_t printed, spoiled, missed;
+    bool operator==(const Counts&) const = default;
+};
+
+// Counted from the tile rows, as the store did before it kept counters.
+Counts counted_rows(const std::filesystem::path& db, std::int64_t job) {
+    jobs::Database d(db.string());
+    auto s = d.prepare(
+        "SELECT (SELECT count(*) FROM tiles WHERE job = ?1 AND state = 'printed' AND idx >= 0), "
+        "(SELECT coalesce(sum(spoiled), 0) FROM tiles WHERE job = ?1), "
+        "(SELECT coalesce(sum(missed), 0) FROM tiles WHERE job = ?1)");
+    s.bind(1, job);
+    REQUIRE(s.step());
+    return {s.integer(0), s.integer(1), s.integer(2)};
+}
+
+}  // namespace
+
+TEST_CASE("a job's printed, spoiled and missed counters always equal its tile rows", "[jobs]") {
+    test::TempDir dir;
+    const auto path = dir.path() / "jobs.db";
+    jobs::JobStore store(path.string());
+    const jobs::Job a = store.add_job(small_spec(40)), b = store.add_job(small_spec(40));
+    std::mt19937 random(7);
+    std::int64_t seq = 0;
+    for (int step = 0; step < 3000; ++step) {
+        const std::int64_t job = random() % 2 ? a.id : b.id;
+        const std::int64_t idx = std::int64_t(random() % 42) - 2;  // blanks are < 0
+        switch (random() % 6) {
+            case 0:
+                store.mark_sending(job, idx, ++seq);
+                break;
+            case 1:
+                store.mark_sent(job, idx);
+                break;
+            case 2:
+                store.mark_printed(job, idx, seq);
+                break;
+            case 3:
+                store.mark_spoiled(job, idx);
+                break;
+            case 4:
+                store.mark_missed(job, idx);
+                break;
+            default:
+                store.unmark_sending(job, idx);
+                break;
+        }
+        if (step % 100 == 0 || step == 2999)
+            for (const std::int64_t id : {a.id, b.id}) {
+                const jobs::Job j = *store.job(id);
+                INFO("step " << step << ", job " << id);
+                CHECK(Counts{j.printed, j.spoiled, j.missed} == counted_rows(path, id));
+            }
+    }
+    CHECK(store.job(a.id)->printed > 0);
+    CHECK(store.job(a.id)->spoiled > 0);
+}
+
+TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one is refused",
+          "[jobs]") {
+    test::TempDir dir;
+    const auto path = dir.path() / "jobs.db";
+    std::int64_t id = 0;
+    {
+        jobs::JobStore store(path.string());
+        id = store.add_job(small_spec(10)).id;
+        for (std::int64_t i = 0; i < 6; ++i) {
+            store.mark_sending(id, i, i + 1);
+            store.mark_printed(id, i, i);
+        }
+        store.mark_spoiled(id, 4);
+        store.mark_missed(id, 5);
+    }
+    {
+        // What a store of the last release looked like: no counters, no triggers, version 0.
+        jobs::Database d(path.string());
+        d.exec(
+            "DROP TRIGGER tiles_counted_insert; DROP TRIGGER tiles_counted_update; "
+            "DROP TRIGGER tiles_counted_delete; ALTER TABLE jobs DROP COLUMN printed_count; "
+            "ALTER TABLE jobs DROP COLUMN spoiled_count; ALTER TABLE jobs DROP COLUMN "
+            "missed_count; PRAGMA user_version = 0");
+    }
+    {
+        jobs::JobStore store(path.string());
+        const jobs::Job j = *store.job(id);
+        CHECK(Counts{j.printed, j.spoiled, j.missed} == Counts{4, 1, 1});
+        CHECK(Counts{j.printed, j.spoiled, j.missed} == counted_rows(path, id));
+        store.mark_sending(id, 6, 7);
+        store.mark_printed(id, 6, 6);
+        CHECK(store.job(id)->printed == 5);
+    }
+    {
+        jobs::Database d(path.string());
+        d.exec("PRAGMA user_version = 99");
+    }
+    CHECK_THROWS_WITH(jobs::JobStore(path.string()),
+                      Catch::Contains("schema version 99") && Catch::Contains(path.string()));
 }

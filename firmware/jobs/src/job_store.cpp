@@ -40,23 +40,90 @@ CREATE TABLE IF NOT EXISTS tiles (
 CREATE INDEX IF NOT EXISTS tiles_by_state ON tiles(state, seq);
 )";
 
+// Version 2: each job keeps its printed, spoiled and missed counts as columns, which triggers
+// change in the same statement (and so the same transaction) as the tile rows they count.
+// Counting the rows instead took 4 ms a turn at 10 000 printed tiles and 64 ms at 200 000.
+constexpr int kSchemaVersion = 2;
+// With them, the queries a turn makes find their rows by index whatever the job's size: the
+// tiles to print again (upcoming) and the highest sequence number (last_seq, at start-up).
+constexpr std::string_view kCounters = R"(
+CREATE INDEX IF NOT EXISTS tiles_by_job_state ON tiles(job, state, idx);
+CREATE INDEX IF NOT EXISTS tiles_by_seq ON tiles(seq);
+CREATE TRIGGER IF NOT EXISTS tiles_counted_insert AFTER INSERT ON tiles BEGIN
+    UPDATE jobs SET
+        printed_count = printed_count + (NEW.state = 'printed' AND NEW.idx >= 0),
+        spoiled_count = spoiled_count + NEW.spoiled,
+        missed_count = missed_count + NEW.missed
+    WHERE id = NEW.job;
+END;
+CREATE TRIGGER IF NOT EXISTS tiles_counted_update AFTER UPDATE ON tiles BEGIN
+    UPDATE jobs SET
+        printed_count = printed_count + (NEW.state = 'printed' AND NEW.idx >= 0)
+                                      - (OLD.state = 'printed' AND OLD.idx >= 0),
+        spoiled_count = spoiled_count + NEW.spoiled - OLD.spoiled,
+        missed_count = missed_count + NEW.missed - OLD.missed
+    WHERE id = NEW.job;
+END;
+CREATE TRIGGER IF NOT EXISTS tiles_counted_delete AFTER DELETE ON tiles BEGIN
+    UPDATE jobs SET
+        printed_count = printed_count - (OLD.state = 'printed' AND OLD.idx >= 0),
+        spoiled_count = spoiled_count - OLD.spoiled,
+        missed_count = missed_count - OLD.missed
+    WHERE id = OLD.job;
+END;
+)";
+
 constexpr std::string_view kJobColumns =
     "SELECT id, map, profile, seed, tiles, tile_width_mm, tile_height_mm, dpi, layout, "
     "wall_width, status, message, next_index, missed_line_tiles, created, started, finished, "
-    "(SELECT count(*) FROM tiles t WHERE t.job = jobs.id AND t.state = 'printed' AND t.idx >= 0), "
-    "(SELECT coalesce(sum(spoiled), 0) FROM tiles t WHERE t.job = jobs.id), "
-    "(SELECT coalesce(sum(missed), 0) FROM tiles t WHERE t.job = jobs.id) FROM jobs ";
+    "printed_count, spoiled_count, missed_count FROM jobs ";
+
+bool has_column(Database& db, const char* table, std::string_view column) {
+    bool found = false;
+    for (auto s = db.prepare(std::string("SELECT name FROM pragma_table_info('") + table + "')");
+         s.step();)
+        found |= s.text(0) == column;
+    return found;
+}
 
 }  // namespace
 
 JobStore::JobStore(const std::string& path) : db_(path) {
+    // Migrated in one write transaction: a crash half way leaves the old store as it was, and
+    // the API's store and the print loop's, opened together, migrate one after the other.
+    Transaction t(db_);
+    std::int64_t found = 0;
+    {
+        auto version = db_.prepare("PRAGMA user_version");
+        if (version.step()) found = version.integer(0);
+    }
+    if (found > kSchemaVersion)
+        throw StoreError("job store " + path + " has schema version " + std::to_string(found) +
+                         ", newer than this daemon's " + std::to_string(kSchemaVersion) +
+                         ": update the daemon");
+    if (found == kSchemaVersion) {
+        t.commit();
+        return;
+    }
     db_.exec(kSchema);
     // Stores made before tiles.missed existed get the column (CREATE TABLE IF NOT EXISTS
     // leaves an old table as it was).
-    bool has_missed = false;
-    for (auto s = db_.prepare("SELECT name FROM pragma_table_info('tiles')"); s.step();)
-        has_missed |= s.text(0) == "missed";
-    if (!has_missed) db_.exec("ALTER TABLE tiles ADD COLUMN missed INTEGER NOT NULL DEFAULT 0");
+    if (!has_column(db_, "tiles", "missed"))
+        db_.exec("ALTER TABLE tiles ADD COLUMN missed INTEGER NOT NULL DEFAULT 0");
+    for (const char* column : {"printed_count", "spoiled_count", "missed_count"})
+        if (!has_column(db_, "jobs", column))
+            db_.exec(std::string("ALTER TABLE jobs ADD COLUMN ") + column +
+                     " INTEGER NOT NULL DEFAULT 0");
+    // Counted once from the rows; from here on the triggers keep them.
+    db_.exec(
+        "UPDATE jobs SET "
+        "printed_count = (SELECT count(*) FROM tiles t WHERE t.job = jobs.id AND "
+        "t.state = 'printed' AND t.idx >= 0), "
+        "spoiled_count = (SELECT coalesce(sum(spoiled), 0) FROM tiles t WHERE t.job = jobs.id), "
+        "missed_count = (SELECT coalesce(sum(missed), 0) FROM tiles t WHERE t.job = jobs.id)");
+    db_.exec(kCounters);
+    db_.exec("PRAGMA user_version = " + std::to_string(kSchemaVersion));
+    t.commit();
 }
 
 Job JobStore::read_job(Statement& s) {
@@ -149,13 +216,18 @@ std::vector<QueuedTile> JobStore::heads_queue() {
 }
 
 std::vector<std::int64_t> JobStore::upcoming(const Job& job, int count) {
+    // One index range per state, merged here: with `state IN (...)` SQLite walked the job's
+    // rows in index order instead, every row of a job of a million tiles, every turn.
     std::vector<std::int64_t> out;
-    auto s = db_.prepare(
-        "SELECT idx FROM tiles WHERE job = ? AND state IN ('spoiled', 'missed') ORDER BY idx "
-        "LIMIT ?");
-    s.bind(1, job.id).bind(2, std::int64_t(count));
-    while (s.step())
-        out.push_back(s.integer(0));
+    for (const char* state : {"spoiled", "missed"}) {
+        auto s =
+            db_.prepare("SELECT idx FROM tiles WHERE job = ? AND state = ? ORDER BY idx LIMIT ?");
+        s.bind(1, job.id).bind(2, std::string_view(state)).bind(3, std::int64_t(count));
+        while (s.step())
+            out.push_back(s.integer(0));
+    }
+    std::sort(out.begin(), out.end());
+    if (int(out.size()) > count) out.resize(size_t(count));
     auto n = db_.prepare("SELECT next_index FROM jobs WHERE id = ?");
     n.bind(1, job.id);
     std::int64_t next = n.step() ? n.integer(0) : job.spec.tiles;

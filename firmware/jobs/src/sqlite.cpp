@@ -94,6 +94,10 @@ bool Statement::step() {
     db_->fail("step '" + sql_.substr(0, 60) + "'");
 }
 
+void Statement::reset() {
+    sqlite3_reset(stmt_);
+}
+
 std::int64_t Statement::integer(int column) const {
     return sqlite3_column_int64(stmt_, column);
 }

@@ -62,6 +62,8 @@ class Statement {
         while (step()) {
         }
     }
+    // Ready to bind and step again (bindings are kept).
+    void reset();
 
     std::int64_t integer(int column) const;
     double real(int column) const;
