@@ -391,9 +391,8 @@ void PrintLoop::park(const std::string& reason, LineStatus status) {
 void PrintLoop::print_turn() {
     if (job_) render_.want(renderer_, store_.upcoming(*job_, render_.capacity()));
     if (auto error = render_.take_error(); error && job_) {
-        store_.set_status(job_->id, jobs::JobStatus::failed, "render: " + *error);
-        log_line(job_->name() + " failed: render: " + *error);
-        job_.reset();
+        end_job(jobs::JobStatus::failed, "render: " + *error,
+                job_->name() + " failed: render: " + *error);
     }
     check_job_done();
     if (draining_) {
@@ -702,12 +701,9 @@ void PrintLoop::check_job_done() {
     });
     const bool cancelled = job->status == jobs::JobStatus::cancelled;
     if ((stop_job_ || cancelled) && !holds) {
-        store_.set_status(job->id, jobs::JobStatus::cancelled, "stopped by the operator");
-        log_line(job->name() + " stopped: " + std::to_string(job->printed) + " of " +
-                 std::to_string(job->spec.tiles) + " tiles printed");
-        job_.reset();
-        renderer_.reset();
-        render_.want(nullptr, {});
+        end_job(jobs::JobStatus::cancelled, "stopped by the operator",
+                job->name() + " stopped: " + std::to_string(job->printed) + " of " +
+                    std::to_string(job->spec.tiles) + " tiles printed");
         return;
     }
     if (cancelled) stop_job_ = true;
@@ -716,14 +712,22 @@ void PrintLoop::check_job_done() {
     const bool last_under_heads = last_printed_ && last_printed_->entry.job == job->id &&
                                   Clock::now() - last_printed_->arrived_after < under_heads();
     if (job->printed >= job->spec.tiles && !last_under_heads) {
-        store_.set_status(job->id, jobs::JobStatus::done);
-        log_line(job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
-                 std::to_string(job->spoiled) + " spoiled and reprinted, " +
-                 std::to_string(job->missed_line_tiles) + " line tiles passed unprinted");
-        job_.reset();
-        renderer_.reset();
-        render_.want(nullptr, {});
+        end_job(jobs::JobStatus::done, "",
+                job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
+                    std::to_string(job->spoiled) + " spoiled and reprinted, " +
+                    std::to_string(job->missed_line_tiles) + " line tiles passed unprinted");
     }
+}
+
+void PrintLoop::end_job(jobs::JobStatus status, const std::string& message,
+                        const std::string& log) {
+    // The one place a job ends, whatever ends it: the store says so, and nothing of it is
+    // rendered any more (a failed render used to be retried for a job already given up).
+    store_.set_status(job_->id, status, message);
+    log_line(log);
+    job_.reset();
+    renderer_.reset();
+    render_.want(nullptr, {});
 }
 
 void PrintLoop::publish() {

@@ -72,6 +72,7 @@ class PrintLoop {
     std::optional<Separations> tile_for(std::int64_t index, bool wait);
     void start_conveyor();
     void check_job_done();
+    void end_job(jobs::JobStatus status, const std::string& message, const std::string& log);
     void adjust_speed();
     Clock::duration pitch_time() const;
     Clock::duration under_heads() const;
