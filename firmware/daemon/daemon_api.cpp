@@ -142,11 +142,12 @@ json DaemonApi::status() {
     return j;
 }
 
-json DaemonApi::submit(const jobs::JobSpec& spec) {
+json DaemonApi::submit(const jobs::JobSpec& submitted) {
     // Rejected here rather than when the line reaches the job: a queue must not stall on a
     // job that can never print.
+    jobs::JobSpec spec = submitted;
     try {
-        synth::load_texture_map(spec.map);
+        spec.map_id = synth::load_texture_map(spec.map).id_hex();
     } catch (const std::exception& e) {
         throw api::ApiError(400, "map", std::string("map: ") + e.what());
     }

@@ -2,6 +2,7 @@
 // tile exactly once with the bytes an offline render gives, through SIGKILL and restart, an
 // e-stop and a Modbus link drop.
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <random>
 
 #include "daemon_process.hpp"
@@ -381,4 +382,41 @@ TEST_CASE("SIGTERM ends the daemon while a counter fault holds the line", "[daem
     daemon.stop(SIGTERM);
     CHECK(std::chrono::steady_clock::now() - t0 < 5s);
     CHECK(line.status()["running"] == false);
+}
+
+TEST_CASE("a job pins its design: a design file replaced before the job resumes is refused",
+          "[daemon][line][pin]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    const auto design = dir.path() / "design.tjmap";
+    std::filesystem::copy_file(TILEJET_TEST_MAP, design);
+    test::DaemonProcess daemon(line, dir.path());
+    const auto [status, body] =
+        daemon.request("POST", "/api/jobs",
+                       R"({"map":")" + design.string() +
+                           R"(","seed":4242,"tiles":200,"tile_mm":"200x200","dpi":20})");
+    REQUIRE(status == 201);
+    const auto id = body.at("id").get<std::int64_t>();
+    const std::string submitted_id = body.at("map_id").get<std::string>();
+    CHECK(submitted_id.size() == 64);
+    REQUIRE(test::eventually([&] { return daemon.job(id)["printed"].get<int>() >= 4; }, 10s));
+    daemon.stop(SIGKILL);
+    // Another design under the same name: the tiles it would print under the job's indices
+    // are not the ones the job began with.
+    std::filesystem::copy_file(TILEJET_SOURCE_DIR "/tests/synth/data/legacy-one-cell-image.tjmap",
+                               design, std::filesystem::copy_options::overwrite_existing);
+    daemon.start();
+    json job;
+    REQUIRE(test::eventually(
+        [&] {
+            job = daemon.job(id);
+            return job.value("status", "") == "failed";
+        },
+        10s));
+    const std::string message = job.value("message", "");
+    INFO(message);
+    CHECK(message.find("job-" + std::to_string(id)) != std::string::npos);
+    CHECK(message.find(design.string()) != std::string::npos);
+    CHECK(message.find(submitted_id) != std::string::npos);
+    CHECK(message.find("is now map ") != std::string::npos);
 }

@@ -133,13 +133,15 @@ TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one 
         store.mark_missed(id, 5);
     }
     {
-        // What a store of the last release looked like: no counters, no triggers, version 0.
+        // What a store of the last release looked like: no counters, triggers, indexes or map ids;
+        // version 0.
         jobs::Database d(path.string());
         d.exec(
             "DROP TRIGGER tiles_counted_insert; DROP TRIGGER tiles_counted_update; "
             "DROP TRIGGER tiles_counted_delete; ALTER TABLE jobs DROP COLUMN printed_count; "
             "ALTER TABLE jobs DROP COLUMN spoiled_count; ALTER TABLE jobs DROP COLUMN "
-            "missed_count; PRAGMA user_version = 0");
+            "missed_count; ALTER TABLE jobs DROP COLUMN map_id; DROP INDEX tiles_by_job_state; "
+            "DROP INDEX tiles_by_seq; PRAGMA user_version = 0");
     }
     {
         jobs::JobStore store(path.string());
@@ -149,6 +151,11 @@ TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one 
         store.mark_sending(id, 6, 7);
         store.mark_printed(id, 6, 6);
         CHECK(store.job(id)->printed == 5);
+        // Jobs from before ids are not pinned; new ones keep the id they were submitted with.
+        CHECK(store.job(id)->spec.map_id.empty());
+        jobs::JobSpec pinned = small_spec(3);
+        pinned.map_id = std::string(64, 'a');
+        CHECK(store.job(store.add_job(pinned).id)->spec.map_id == pinned.map_id);
     }
     {
         jobs::Database d(path.string());

@@ -12,6 +12,7 @@ nlohmann::json job_json(const jobs::Job& job) {
             {"status", std::string(to_string(job.status))},
             {"message", job.message},
             {"map", job.spec.map},
+            {"map_id", job.spec.map_id},
             {"profile", job.spec.profile},
             {"seed", job.spec.seed},
             {"tiles", job.spec.tiles},

@@ -76,7 +76,7 @@ END;
 constexpr std::string_view kJobColumns =
     "SELECT id, map, profile, seed, tiles, tile_width_mm, tile_height_mm, dpi, layout, "
     "wall_width, status, message, next_index, missed_line_tiles, created, started, finished, "
-    "printed_count, spoiled_count, missed_count FROM jobs ";
+    "printed_count, spoiled_count, missed_count, map_id FROM jobs ";
 
 bool has_column(Database& db, const char* table, std::string_view column) {
     bool found = false;
@@ -114,6 +114,8 @@ JobStore::JobStore(const std::string& path) : db_(path) {
         if (!has_column(db_, "jobs", column))
             db_.exec(std::string("ALTER TABLE jobs ADD COLUMN ") + column +
                      " INTEGER NOT NULL DEFAULT 0");
+    if (!has_column(db_, "jobs", "map_id"))
+        db_.exec("ALTER TABLE jobs ADD COLUMN map_id TEXT NOT NULL DEFAULT ''");
     // Counted once from the rows; from here on the triggers keep them.
     db_.exec(
         "UPDATE jobs SET "
@@ -148,13 +150,14 @@ Job JobStore::read_job(Statement& s) {
     j.printed = s.integer(17);
     j.spoiled = s.integer(18);
     j.missed = s.integer(19);
+    j.spec.map_id = s.text(20);
     return j;
 }
 
 Job JobStore::add_job(const JobSpec& spec) {
     auto s = db_.prepare(
         "INSERT INTO jobs (map, profile, seed, tiles, tile_width_mm, tile_height_mm, dpi, layout, "
-        "wall_width, status) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, 'queued')");
+        "wall_width, status, map_id) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, 'queued', ?)");
     s.bind(1, spec.map)
         .bind(2, spec.profile)
         .bind(3, std::to_string(spec.seed))
@@ -164,6 +167,7 @@ Job JobStore::add_job(const JobSpec& spec) {
         .bind(7, std::int64_t(spec.dpi))
         .bind(8, spec.layout)
         .bind(9, std::int64_t(spec.wall_width))
+        .bind(10, spec.map_id)
         .run();
     return *job(db_.last_insert_rowid());
 }

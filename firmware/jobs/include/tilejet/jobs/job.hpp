@@ -10,7 +10,10 @@ namespace tilejet::jobs {
 
 // What the operator asks for (tilejet job submit, POST /api/jobs).
 struct JobSpec {
-    std::string map;      // texture map file (absolute)
+    std::string map;  // texture map file (absolute)
+    // The map's content id (hex) when the job was submitted: the job prints that design or
+    // nothing, even if the file is replaced before it resumes. Empty: jobs from before ids.
+    std::string map_id;
     std::string profile;  // CMYK output profile; empty: [colour] output_profile
     std::uint64_t seed = 0;
     std::int64_t tiles = 0;
