@@ -83,16 +83,18 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     //    into squares; half-cell blocks used to repeat the same few best matches in cell after
     //    cell (periodicity 2.6 on the demo design), which the usage cost below now prevents;
     //  - strips, thin, are quilted with blocks of a quarter cell, overlaps of a quarter block;
-    //  - the frame is an eighth of the cell: with a sixteenth, the cuts of the two cells on
+    //  - the frame is a tenth of the cell: with a sixteenth, the cuts of the two cells on
     //    either side of an edge ran a few pixels apart and drew a line of strip along every
-    //    cell border. Only its outer pixel is locked: the cells' own blocks cut into the rest;
+    //    cell border; with an eighth, the strips (the same at one edge in K^2) were so much of
+    //    the plane that fine granite repeated with them (periodicity 1.9 against 0.9). Only
+    //    its outer pixel is locked: the cells' own blocks cut into the rest;
     //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
     //    round as squares, the same square at a third of all vertices.
     block_ = std::max(8, side / 2);
     overlap_ = std::max(2, block_ / 2);
     strip_block_ = std::max(8, side / 4);
     strip_overlap_ = std::max(2, strip_block_ / 4);
-    w_ = std::max(3, side / 8);
+    w_ = std::max(3, side / 10);
     c_ = std::max(2, w_ / 3);
     if (source_rgb.cols < cw_ + 2 * w_ + 2 || source_rgb.rows < ch_ + 2 * w_ + 2)
         throw SynthError("the source is too small for a cell set of this cell size");
