@@ -148,6 +148,15 @@ bool runs_inside_diamond(const Patch& p, const detail::CellGrid& grid) {
     return true;
 }
 
+bool runs_inside_cell(const Patch& p, int width, int height) {
+    for (const MaskRun& run : p.runs) {
+        const int64_t y = int64_t(p.y) + run.row, xa = int64_t(p.x) + run.x,
+                      xb = xa + run.length - 1;
+        if (y < 0 || y >= height || xa < 0 || xb >= width) return false;
+    }
+    return true;
+}
+
 PatchSet read_patches(Reader& r, const TextureMap& map) {
     PatchSet set;
     const auto n = r.le<uint32_t>("patch count");
@@ -173,6 +182,10 @@ PatchSet read_patches(Reader& r, const TextureMap& map) {
         p.bits.assign(bits.begin(), bits.end());
         p.derive_runs();
         if (!runs_inside_diamond(p, grid)) r.fail(which + " leaves its cell's diamond");
+        // A set's patches stay in their own cell (cell_set.hpp): one over a neighbour, whose
+        // image has other patches, would make sampling and region rendering disagree.
+        if (map.corner_colours > 1 && !runs_inside_cell(p, map.cell_width, map.cell_height))
+            r.fail(which + " of a cell set leaves its cell");
     }
     return set;
 }

@@ -284,3 +284,24 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
     // What is left is the thin frames that neighbours share (a quarter block wide).
     CHECK(new_grid < 0.15);
 }
+
+TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
+          "[cell_set][map_file]") {
+    TextureMap map = small_set();
+    // The patch of image 0 nearest the cell's middle row, moved to start one pixel left of
+    // the cell: still in the cell's diamond, but over the neighbour's image.
+    Patch* moved = nullptr;
+    for (Patch& p : map.cell_images[0].a.patches)
+        if (!moved || std::abs(p.y + p.height / 2 - kCell / 2) <
+                          std::abs(moved->y + moved->height / 2 - kCell / 2))
+            moved = &p;
+    REQUIRE(moved);
+    int left = INT32_MAX;
+    for (const MaskRun& run : moved->runs)
+        left = std::min(left, moved->x + run.x);
+    moved->x -= left + 1;
+    assign_map_id(map);
+    CHECK_THROWS_WITH(
+        decode_texture_map(encode_texture_map(map), "crafted.tjmap"),
+        Catch::Contains("crafted.tjmap") && Catch::Contains("of a cell set leaves its cell"));
+}
