@@ -1,10 +1,15 @@
 #include "tilejet/synth/map_file.hpp"
 
+#include <fcntl.h>
 #include <openssl/evp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <array>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -28,6 +33,12 @@ constexpr size_t kHeaderBytes = 32, kEntryBytes = 32;
 constexpr uint32_t kFlagZlib = 1;
 constexpr uint32_t kMaxSections = 4096;
 constexpr uint32_t kMaxRawSection = 256u << 20;
+// A whole map, on disk and inflated: a 8192 px slab's source is 201 MB raw.
+constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30, kMaxRawTotal = uint64_t(1) << 30;
+// The sections a map is made of; any other is refused (a file of unknown sections that
+// inflate to 256 MiB each, with valid checksums and id, cost every load 2 GB).
+constexpr std::array<std::string_view, 9> kKnownTags = {"META", "CSET", "SRCE", "CELL", "PATA",
+                                                        "PATB", "OVLA", "OVLB", "IDNT"};
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
 constexpr uint32_t kMaxCellImages =
@@ -342,44 +353,82 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     if (crc_of(table_bytes) != table_crc && kVerifyChecksums)
         fail("section table is corrupted (checksum mismatch)");
 
-    std::map<std::pair<std::string, uint32_t>, std::vector<uint8_t>> raw;
-    std::vector<Section> ordered;
+    // First the table alone: every section known, inside the file, once, and all of them
+    // together no larger than a map can be, before anything is inflated.
+    struct Entry {
+        std::string tag;
+        uint32_t index;
+        std::span<const uint8_t> payload;
+        uint32_t raw_len, crc, flags;
+        std::string label;
+    };
+    std::vector<Entry> entries;
+    std::map<std::pair<std::string, uint32_t>, size_t> where_is;
+    uint64_t raw_total = 0;
     Reader table(table_bytes, where + " section table");
     for (uint32_t s = 0; s < count; ++s) {
         auto tag_bytes = table.take(4, "section tag");
-        std::string tag(tag_bytes.begin(), tag_bytes.end());
-        const auto index = table.le<uint32_t>("section index");
+        Entry e;
+        e.tag.assign(tag_bytes.begin(), tag_bytes.end());
+        e.index = table.le<uint32_t>("section index");
         const auto offset = table.le<uint64_t>("section offset");
         const auto stored = table.le<uint32_t>("section length");
-        const auto raw_len = table.le<uint32_t>("section raw length");
-        const auto crc = table.le<uint32_t>("section checksum");
-        const auto flags = table.le<uint32_t>("section flags");
-        const std::string label = "section " + tag + "[" + std::to_string(index) + "]";
+        e.raw_len = table.le<uint32_t>("section raw length");
+        e.crc = table.le<uint32_t>("section checksum");
+        e.flags = table.le<uint32_t>("section flags");
+        std::string printable;
+        for (char c : e.tag)
+            printable += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
+        e.label = "section " + printable + "[" + std::to_string(e.index) + "]";
+        if (std::find(kKnownTags.begin(), kKnownTags.end(), e.tag) == kKnownTags.end())
+            fail(e.label + " is not a section of a texture map");
         if (offset > bytes.size() || stored > bytes.size() - offset)
-            fail(label + " lies outside the file");
-        auto payload = bytes.subspan(size_t(offset), stored);
-        if (crc_of(payload) != crc && kVerifyChecksums)
-            fail(label + " is corrupted (checksum mismatch)");
-        if (raw_len > kMaxRawSection) fail(label + " is too large");
+            fail(e.label + " lies outside the file");
+        if (e.raw_len > kMaxRawSection) fail(e.label + " is too large");
+        raw_total += e.raw_len;
+        if (raw_total > kMaxRawTotal)
+            fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) + " MiB");
+        if (!where_is.emplace(std::pair{e.tag, e.index}, entries.size()).second)
+            fail(e.label + " appears twice");
+        e.payload = bytes.subspan(size_t(offset), stored);
+        entries.push_back(std::move(e));
+    }
+    // Then each section, inflated once and kept once.
+    std::vector<Section> ordered;  // file order, for the content hash
+    std::vector<uint8_t> ident;
+    std::vector<bool> used(entries.size(), false);
+    std::vector<size_t> slot(entries.size(), SIZE_MAX);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const Entry& e = entries[i];
+        if (crc_of(e.payload) != e.crc && kVerifyChecksums)
+            fail(e.label + " is corrupted (checksum mismatch)");
         std::vector<uint8_t> data;
-        if (flags & kFlagZlib) {
-            data.resize(raw_len);
-            uLongf out_len = raw_len;
-            if (uncompress(data.data(), &out_len, payload.data(), stored) != Z_OK ||
-                out_len != raw_len)
-                fail(label + " does not decompress to its recorded length");
+        if (e.flags & kFlagZlib) {
+            data.resize(e.raw_len);
+            uLongf out_len = e.raw_len;
+            if (uncompress(data.data(), &out_len, e.payload.data(), uLong(e.payload.size())) !=
+                    Z_OK ||
+                out_len != e.raw_len)
+                fail(e.label + " does not decompress to its recorded length");
         } else {
-            if (stored != raw_len) fail(label + " has inconsistent lengths");
-            data.assign(payload.begin(), payload.end());
+            if (e.payload.size() != e.raw_len) fail(e.label + " has inconsistent lengths");
+            data.assign(e.payload.begin(), e.payload.end());
         }
-        if (!raw.emplace(std::pair{tag, index}, data).second) fail(label + " appears twice");
-        if (tag != "IDNT") ordered.push_back({tag, index, std::move(data)});
+        if (e.tag == "IDNT") {
+            ident = std::move(data);
+        } else {
+            slot[i] = ordered.size();
+            ordered.push_back({e.tag, e.index, std::move(data)});
+        }
     }
     auto section = [&](const char* tag, uint32_t index) -> Reader {
-        auto it = raw.find({tag, index});
+        auto it = where_is.find({tag, index});
         const std::string label = std::string("section ") + tag + "[" + std::to_string(index) + "]";
-        if (it == raw.end()) whole.fail(label + " is missing");
-        return Reader(it->second, where + " " + label);
+        if (it == where_is.end()) whole.fail(label + " is missing");
+        used[it->second] = true;
+        const std::vector<uint8_t>& data =
+            slot[it->second] == SIZE_MAX ? ident : ordered[slot[it->second]].raw;
+        return Reader(data, where + " " + label);
     };
 
     TextureMap map;
@@ -403,7 +452,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         map.build.active_per_cell = r.f64("active patches per cell");
         r.done();
     }
-    if (raw.count({"CSET", 0}) || images != 1) {
+    if (where_is.count({"CSET", 0}) || images != 1) {
         Reader r = section("CSET", 0);
         const auto k = r.le<uint32_t>("corner colours");
         r.done();
@@ -441,6 +490,8 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         std::copy(id.begin(), id.end(), map.id.begin());
         r.done();
     }
+    for (size_t i = 0; i < entries.size(); ++i)
+        if (!used[i]) fail(entries[i].label + " is not part of this map");
     if (content_hash(ordered) != map.id && kVerifyChecksums)
         fail("content does not match its map id (file altered)");
     return map;
@@ -466,14 +517,33 @@ void save_texture_map(const TextureMap& map, const std::filesystem::path& path) 
 }
 
 TextureMap load_texture_map(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw MapFileError("cannot read texture map '" + path.string() +
-                           "': " + std::strerror(errno));
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                               std::istreambuf_iterator<char>());
-    if (in.bad()) throw MapFileError("cannot read texture map '" + path.string() + "'");
-    if (bytes.empty()) throw MapFileError("texture map '" + path.string() + "' is an empty file");
+    const std::string name = "texture map '" + path.string() + "'";
+    // Non-blocking, so that a FIFO does not hang the open; then regular files only, and no
+    // larger than a map can be, before anything is read (/dev/zero reads for ever).
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throw MapFileError("cannot read " + name + ": " + std::strerror(errno));
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat st {};
+    if (::fstat(fd, &st) != 0)
+        throw MapFileError("cannot read " + name + ": " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throw MapFileError(name + " is not a regular file");
+    if (st.st_size == 0) throw MapFileError(name + " is an empty file");
+    if (uint64_t(st.st_size) > kMaxFileBytes)
+        throw MapFileError(name + " is " + std::to_string(uint64_t(st.st_size) >> 20) +
+                           " MiB, over the " + std::to_string(kMaxFileBytes >> 20) +
+                           " MiB a texture map can be");
+    std::vector<uint8_t> bytes(size_t(st.st_size));
+    size_t got = 0;
+    while (got < bytes.size()) {
+        const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw MapFileError("cannot read " + name + ": " + std::strerror(errno));
+        if (n == 0) throw MapFileError(name + " shrank while it was read");
+        got += size_t(n);
+    }
     return decode_texture_map(bytes, path.string());
 }
 

@@ -1,5 +1,7 @@
 // The texture map file: round trip, and every kind of damage gives a clear error.
 
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <cstring>
 #include <fstream>
@@ -36,6 +38,67 @@ std::string load_error(const TempDir& dir, const std::string& bytes) {
 void put_u32(std::string& bytes, size_t at, uint32_t v) {
     for (int i = 0; i < 4; ++i)
         bytes[at + size_t(i)] = char(v >> (8 * i));
+}
+
+uint64_t get_le(const std::string& bytes, size_t at, int n) {
+    uint64_t v = 0;
+    for (int i = 0; i < n; ++i)
+        v |= uint64_t(uint8_t(bytes[at + size_t(i)])) << (8 * i);
+    return v;
+}
+
+void put_le(std::string& out, uint64_t v, int n) {
+    for (int i = 0; i < n; ++i)
+        out += char(v >> (8 * i));
+}
+
+uint32_t crc32_of(const std::string& bytes) {  // the map format's CRC-32 (zlib's polynomial)
+    uint32_t c = 0xffffffffu;
+    for (char ch : bytes) {
+        c ^= uint8_t(ch);
+        for (int k = 0; k < 8; ++k)
+            c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+    }
+    return ~c;
+}
+
+// A section as the container holds it: payload as stored, its raw length and flags.
+struct StoredSection {
+    std::string tag;
+    uint32_t index, raw_len, flags;
+    std::string payload;
+};
+
+// The sections of a map file, read by the file layout (map_file.cpp), and a file made of any
+// sections with a correct header, table and checksums: what a crafted file looks like.
+std::vector<StoredSection> sections_of(const std::string& file) {
+    const uint32_t count = uint32_t(get_le(file, 12, 4));
+    std::vector<StoredSection> out;
+    for (uint32_t s = 0; s < count; ++s) {
+        const size_t e = 32 + 32 * size_t(s);
+        const uint64_t offset = get_le(file, e + 8, 8), stored = get_le(file, e + 16, 4);
+        out.push_back({file.substr(e, 4), uint32_t(get_le(file, e + 4, 4)),
+                       uint32_t(get_le(file, e + 20, 4)), uint32_t(get_le(file, e + 28, 4)),
+                       file.substr(size_t(offset), size_t(stored))});
+    }
+    return out;
+}
+
+std::string file_of(const std::vector<StoredSection>& sections) {
+    std::string table, payloads;
+    uint64_t offset = 32 + 32 * sections.size();
+    for (const StoredSection& s : sections) {
+        table += s.tag;
+        put_le(table, s.index, 4), put_le(table, offset, 8), put_le(table, s.payload.size(), 4);
+        put_le(table, s.raw_len, 4), put_le(table, crc32_of(s.payload), 4);
+        put_le(table, s.flags, 4);
+        payloads += s.payload;
+        offset += s.payload.size();
+    }
+    std::string out = "TJMAP\r\n\x1a";
+    put_le(out, kMapFormatVersion, 4), put_le(out, sections.size(), 4), put_le(out, offset, 8);
+    put_le(out, crc32_of(table), 4), put_le(out, 0, 4);
+    return out + table + payloads;
 }
 
 }  // namespace
@@ -113,6 +176,41 @@ TEST_CASE("damaged map files are refused with a message naming the file", "[mapf
     }
     SECTION("trailing garbage") {
         REQUIRE_THAT(load_error(dir, good + "xyz"), Contains(name) && Contains("trailing"));
+    }
+    SECTION("the container rebuilt by the test is itself a good map") {
+        REQUIRE(file_of(sections_of(good)) == good);
+    }
+    SECTION("a section the format does not know, however valid, is refused before it inflates") {
+        auto sections = sections_of(good);
+        // Claims 256 MiB inflated: refused from the table, before any allocation.
+        sections.insert(sections.begin() + 1, {"JUNK", 0, 256u << 20, 1, "x"});
+        REQUIRE_THAT(load_error(dir, file_of(sections)),
+                     Contains(name) && Contains("JUNK[0] is not a section of a texture map"));
+    }
+    SECTION("sections that would inflate past what a map can be are refused before inflating") {
+        auto sections = sections_of(good);
+        for (uint32_t i = 100; i < 105; ++i)
+            sections.push_back({"CELL", i, 250u << 20, 1, "x"});
+        REQUIRE_THAT(load_error(dir, file_of(sections)), Contains(name) && Contains("inflate"));
+    }
+    SECTION("a known section the map does not use is refused") {
+        auto sections = sections_of(good);
+        sections.push_back({"CELL", 7, 1, 0, "x"});
+        REQUIRE_THAT(load_error(dir, file_of(sections)),
+                     Contains(name) && Contains("CELL[7] is not part of this map"));
+    }
+    SECTION("a section twice is refused") {
+        auto sections = sections_of(good);
+        sections.push_back(sections.front());
+        REQUIRE_THAT(load_error(dir, file_of(sections)), Contains("appears twice"));
+    }
+    SECTION("only regular files are read: no FIFO, device or directory") {
+        const auto fifo = dir / "fifo.tjmap";
+        REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+        for (const std::filesystem::path& p :
+             {fifo, std::filesystem::path("/dev/zero"), std::filesystem::path(dir.path())})
+            REQUIRE_THROWS_WITH(load_texture_map(p),
+                                Contains(p.string()) && Contains("not a regular file"));
     }
     SECTION("empty and missing files") {
         REQUIRE_THAT(load_error(dir, ""), Contains(name) && Contains("empty"));
