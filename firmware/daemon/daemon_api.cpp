@@ -1,8 +1,14 @@
 #include "daemon_api.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -55,19 +61,58 @@ fs::path upload(const std::string& folder, const std::string& name, const std::s
                             "name: a " + std::string(kind) + " file ends in " + extension);
     if (bytes.empty()) throw api::ApiError(400, "body", "body: empty file");
     const fs::path target = fs::path(folder) / name;
-    if (fs::exists(target))
-        throw api::ApiError(409, "name", "name: '" + name + "' exists; upload it under a new name");
+    const auto exists = [&] {
+        return api::ApiError(409, "name",
+                             "name: '" + name + "' exists; upload it under a new name");
+    };
+    if (fs::exists(target)) throw exists();
     fs::create_directories(folder);
-    const fs::path temp = fs::path(folder) / ("." + name + ".upload");
-    std::ofstream(temp, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    // A temp file of this upload's own: created exclusively (O_EXCL never follows a symlink
+    // planted at the name), then published without ever replacing a file, so of two uploads
+    // of one name exactly one wins and the file holds its bytes.
+    std::string pattern = (fs::path(folder) / ("." + name + ".XXXXXX")).string();
+    const int fd = ::mkostemp(pattern.data(), O_CLOEXEC);
+    if (fd < 0)
+        throw std::runtime_error("cannot create a file in " + folder + ": " + std::strerror(errno));
+    const fs::path temp = pattern;
+    struct Temp {
+        int fd;
+        fs::path path;
+        ~Temp() {  // published or not, the temp name goes
+            if (fd >= 0) ::close(fd);
+            std::error_code ignored;
+            fs::remove(path, ignored);
+        }
+    } guard{fd, temp};
+    for (size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0)
+            throw std::runtime_error("cannot write " + temp.string() + ": " + std::strerror(errno));
+        done += size_t(n);
+    }
+    if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0)
+        throw std::runtime_error("cannot write " + temp.string() + ": " + std::strerror(errno));
+    ::close(std::exchange(guard.fd, -1));
     try {
         check(temp);
     } catch (const std::exception& e) {
-        fs::remove(temp);
         throw api::ApiError(400, "body",
                             std::string("body: not a usable ") + kind + ": " + e.what());
     }
-    fs::rename(temp, target);
+    if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) != 0) {
+        if (errno == EEXIST) throw exists();
+        if (errno != EINVAL && errno != ENOSYS)
+            throw std::runtime_error("cannot publish " + target.string() + ": " +
+                                     std::strerror(errno));
+        // A file system without RENAME_NOREPLACE: a hard link fails the same way on a file
+        // that exists.
+        if (::link(temp.c_str(), target.c_str()) != 0) {
+            if (errno == EEXIST) throw exists();
+            throw std::runtime_error("cannot publish " + target.string() + ": " +
+                                     std::strerror(errno));
+        }
+    }
     return target;
 }
 

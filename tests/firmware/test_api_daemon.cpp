@@ -1,8 +1,12 @@
 // The API as tilejetd serves it on the simulated line: pictures from the job's own tiles,
 // faults in plain words, live events, an engineer's upload, and a shutdown with panels open.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <thread>
 
 #include "daemon_process.hpp"
 #include "tilejet/colour/cmyk_map.hpp"
@@ -195,4 +199,50 @@ TEST_CASE("an engineer adds a design; an operator may not", "[api][daemon][desig
                        R"({"map":")" + designs[0]["path"].get<std::string>() +
                            R"(","seed":1,"tiles":1,"tile_mm":"200x200","dpi":20})");
     CHECK(status == 201);
+}
+
+TEST_CASE(
+    "of two uploads of one new design name exactly one wins and the file holds its bytes; "
+    "a symlink planted in the folder is never written through",
+    "[api][daemon][designs]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    std::ifstream in(TILEJET_TEST_MAP, std::ios::binary);
+    const std::string small((std::istreambuf_iterator<char>(in)), {});
+    std::ifstream in2(TILEJET_SOURCE_DIR "/tests/synth/data/legacy-one-cell-image.tjmap",
+                      std::ios::binary);
+    const std::string legacy((std::istreambuf_iterator<char>(in2)), {});
+    const auto engineer = daemon.sign_in("erik");
+    const auto designs = dir.path() / "designs";
+    for (int round = 0; round < 6; ++round) {
+        const std::string name = "race-" + std::to_string(round) + ".tjmap";
+        int status[2] = {0, 0};
+        std::thread a([&] {
+            status[0] = daemon.request_as(engineer, "PUT", "/api/designs/" + name, small).first;
+        });
+        std::thread b([&] {
+            status[1] = daemon.request_as(engineer, "PUT", "/api/designs/" + name, legacy).first;
+        });
+        a.join(), b.join();
+        INFO("round " << round << ": " << status[0] << ", " << status[1]);
+        REQUIRE(std::count(status, status + 2, 201) == 1);
+        REQUIRE(std::count(status, status + 2, 409) == 1);
+        std::ifstream file(designs / name, std::ios::binary);
+        const std::string held((std::istreambuf_iterator<char>(file)), {});
+        CHECK(held == (status[0] == 201 ? small : legacy));
+    }
+    // No temp file is left behind.
+    for (const auto& entry : std::filesystem::directory_iterator(designs))
+        CHECK(entry.path().filename().string().front() != '.');
+
+    // A symlink at the old fixed temp name and at the target name: neither is followed.
+    const auto victim = dir.path() / "victim.txt";
+    std::ofstream(victim) << "keep me";
+    std::filesystem::create_symlink(victim, designs / ".planted.tjmap.upload");
+    CHECK(daemon.request_as(engineer, "PUT", "/api/designs/planted.tjmap", small).first == 201);
+    std::filesystem::create_symlink(victim, designs / "linked.tjmap");
+    CHECK(daemon.request_as(engineer, "PUT", "/api/designs/linked.tjmap", small).first == 409);
+    std::ifstream v(victim);
+    CHECK(std::string((std::istreambuf_iterator<char>(v)), {}) == "keep me");
 }
