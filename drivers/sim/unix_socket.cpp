@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/uio.h>
 #include <sys/un.h>
 #include <unistd.h>
@@ -136,10 +137,35 @@ std::optional<std::string> UnixSocket::read_line(std::chrono::microseconds timeo
     }
 }
 
+namespace {
+
+// The folder of the simulator's sockets is private: whoever can write there can fake the
+// e-stop line or the heads. Made 0700 when missing; refused when it is a symlink, another
+// user's, or not a folder; tightened to 0700 when it is ours.
+void make_private_folder(const std::filesystem::path& dir) {
+    std::error_code ignored;
+    std::filesystem::create_directories(dir.parent_path(), ignored);
+    if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+        throw std::runtime_error(error_text(dir.string(), "cannot make the socket folder"));
+    struct stat st {};
+    if (::lstat(dir.c_str(), &st) != 0)
+        throw std::runtime_error(error_text(dir.string(), "cannot check the socket folder"));
+    if (!S_ISDIR(st.st_mode))
+        throw std::runtime_error("simulator socket folder " + dir.string() +
+                                 " is not a folder (a symlink?): refusing to use it");
+    if (st.st_uid != ::geteuid())
+        throw std::runtime_error("simulator socket folder " + dir.string() +
+                                 " belongs to another user: refusing to use it");
+    if ((st.st_mode & 077) != 0 && ::chmod(dir.c_str(), 0700) != 0)
+        throw std::runtime_error(error_text(dir.string(), "cannot make the socket folder private"));
+}
+
+}  // namespace
+
 int listen_unix(const std::string& path) {
     const sockaddr_un a = address(path);
+    make_private_folder(std::filesystem::path(path).parent_path());
     std::error_code ignored;
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ignored);
     std::filesystem::remove(path, ignored);
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
     if (fd < 0) throw std::runtime_error(error_text(path, "socket"));

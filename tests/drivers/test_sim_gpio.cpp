@@ -1,7 +1,12 @@
 // The sim GPIO backend (through LatchedGpio, as the daemon gets it from make_gpio) against the
 // simulated chip in tilejet-linesim.
 
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "linesim_process.hpp"
@@ -138,4 +143,49 @@ TEST_CASE("starting with the e-stop pressed is latched too", "[drivers][gpio][si
     auto gpio = drivers::make_gpio(sim.config());
     CHECK(gpio->read(GpioInput::estop));
     CHECK(gpio->estop_latched());
+}
+
+TEST_CASE("the simulator's socket folder is private: made 0700, a symlinked one refused",
+          "[drivers][sim][security]") {
+    test::TempDir dir;
+    // The shipped config with the sockets under `folder` and any free Modbus port.
+    const auto run_with_sockets_in = [&](const std::filesystem::path& folder) {
+        std::ifstream in(TILEJET_SOURCE_DIR "/config/tilejet.toml");
+        std::string config((std::istreambuf_iterator<char>(in)), {});
+        for (size_t at; (at = config.find("/tmp/tilejet-sim/")) != std::string::npos;)
+            config.replace(at, 17, folder.string() + "/");
+        config.replace(config.find("port = 1502"), 11, "port = 0");
+        config.replace(config.find("\"registers.toml\""), 16,
+                       "\"" TILEJET_SOURCE_DIR "/config/registers.toml\"");
+        const auto path = dir.path() / "line.toml";
+        std::ofstream(path) << config;
+        // Started, it would run until killed: a second is enough to see it listen or refuse.
+        const std::string command =
+            "timeout 1 " TILEJET_LINESIM " --config " + path.string() + " 2>&1";
+        std::string out;
+        if (FILE* p = ::popen(command.c_str(), "r")) {
+            char buf[512];
+            while (size_t n = std::fread(buf, 1, sizeof buf, p))
+                out.append(buf, n);
+            ::pclose(p);
+        }
+        return out;
+    };
+    const auto fresh = dir.path() / "run" / "sim";
+    run_with_sockets_in(fresh);
+    struct stat st {};
+    REQUIRE(::stat(fresh.c_str(), &st) == 0);
+    CHECK((st.st_mode & 0777) == 0700);
+
+    const auto open_folder = dir.path() / "open";
+    std::filesystem::create_directory(open_folder);
+    ::chmod(open_folder.c_str(), 0777);
+    run_with_sockets_in(open_folder);
+    REQUIRE(::stat(open_folder.c_str(), &st) == 0);
+    CHECK((st.st_mode & 0777) == 0700);
+
+    const auto link = dir.path() / "link";
+    std::filesystem::create_directory_symlink(open_folder, link);
+    const std::string refused = run_with_sockets_in(link);
+    CHECK_THAT(refused, Catch::Contains(link.string()) && Catch::Contains("symlink"));
 }
