@@ -78,6 +78,22 @@ ApiConfig parse_api(const toml::table* t, const ConfigSource& src) {
     a.sign_in.window =
         std::chrono::seconds(s.get_int("sign_in_window_s", a.sign_in.window.count(), 1, 24 * 3600));
     a.event_streams = int(s.get_int("event_streams", a.event_streams, 1, 256));
+    // The names the API answers to besides the loopback ones: the address it listens on and
+    // what the line's browsers call the controller ("controller.line.local, 10.0.0.5").
+    const auto bracketed = [](const std::string& h) {
+        return h.find(':') != std::string::npos && !h.starts_with('[') ? "[" + h + "]" : h;
+    };
+    a.host_names.push_back(bracketed(c.host));
+    std::string names = s.get_string("host_names", "");
+    for (size_t at = 0; at < names.size();) {
+        size_t end = names.find(',', at);
+        if (end == std::string::npos) end = names.size();
+        std::string name = names.substr(at, end - at);
+        name.erase(0, name.find_first_not_of(' '));
+        name.erase(name.find_last_not_of(' ') + 1);
+        if (!name.empty()) a.host_names.push_back(bracketed(name));
+        at = end + 1;
+    }
     s.finish();
     return c;
 }

@@ -2,6 +2,7 @@
 // tokens, roles, request validation and the event stream.
 #include <httplib.h>
 
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <thread>
@@ -423,4 +424,74 @@ TEST_CASE("the panel's page is served with a policy that keeps it from being fra
     const auto page = c.Get("/");
     CHECK_THAT(page->get_header_value("Content-Type"), Catch::StartsWith("text/html"));
     CHECK_THAT(page->body, Catch::Contains("panel.js"));
+}
+
+TEST_CASE("parallel wrong passwords for one user: the limit is checked and counted at once",
+          "[api][auth]") {
+    // The limit used to be checked before the slow password check and counted after it: 40
+    // parallel guesses got 20 tries instead of the limit's 5.
+    FakeBackend backend;
+    api::ApiServer server(backend, "127.0.0.1", 0, access());  // 3 failures per user
+    std::vector<int> statuses(12);  // fewer than the server's threads: all run at once
+    std::vector<std::thread> guessers;
+    for (size_t i = 0; i < statuses.size(); ++i)
+        guessers.emplace_back([&, i] {
+            httplib::Client c("127.0.0.1", server.port());
+            c.set_read_timeout(20, 0);
+            const auto r =
+                c.Post("/api/session", json{{"user", "olga"}, {"password", "guess"}}.dump(),
+                       "application/json");
+            statuses[i] = r ? r->status : -1;
+        });
+    for (std::thread& t : guessers)
+        t.join();
+    INFO(json(statuses).dump());
+    CHECK(std::count(statuses.begin(), statuses.end(), 401) == 3);
+    CHECK(std::count(statuses.begin(), statuses.end(), 429) == 9);
+}
+
+TEST_CASE(
+    "sessions are capped per user: a viewer signing in again and again signs nobody else "
+    "out",
+    "[api][auth]") {
+    FakeBackend backend;
+    api::ApiServer server(backend, "127.0.0.1", 0, access());
+    Client c(server.port());
+    const auto operator_session = c.session("olga");
+    const auto first_viewer_session = c.session("vera");
+    for (int i = 0; i < 80; ++i)
+        c.session("vera");
+    CHECK(c.send("GET", "/api/status", "", operator_session).status == 200);
+    // The viewer's own oldest went to make room for the newer ones.
+    CHECK(c.send("GET", "/api/status", "", first_viewer_session).status == 401);
+}
+
+TEST_CASE("a request whose Host or Origin is not the controller's is refused, sign-in included",
+          "[api][auth]") {
+    // A page of evil.example whose name was rebound to 127.0.0.1 sends its own name as Host and
+    // Origin: with the demo accounts it could otherwise sign in and drive the line.
+    FakeBackend backend;
+    api::ApiServer server(backend, "127.0.0.1", 0, access());
+    Client c(server.port());
+    const std::string port = std::to_string(server.port());
+    const std::string body = json{{"user", "olga"}, {"password", "olga-pw-123"}}.dump();
+    Answer a =
+        c.send("POST", "/api/session", body,
+               {{"Host", "evil.example:" + port}, {"Origin", "http://evil.example:" + port}});
+    CHECK(a.status == 403);
+    CHECK(a.body["field"] == "host");
+    CHECK_THAT(a.body["error"].get<std::string>(), Catch::Contains("evil.example"));
+    a = c.send("POST", "/api/session", body, {{"Origin", "http://evil.example:" + port}});
+    CHECK(a.status == 403);
+    const auto h = c.session("olga");
+    auto with = [&](httplib::Headers extra) {
+        extra.insert(h.begin(), h.end());
+        return extra;
+    };
+    CHECK(c.send("GET", "/api/status", "", with({{"Host", "evil.example"}})).status == 403);
+    CHECK(c.send("POST", "/api/line/pause", "", with({{"Origin", "null"}})).status == 403);
+    // The controller's own names pass, with or without port, in any case.
+    CHECK(c.send("GET", "/api/status", "", with({{"Host", "LOCALHOST:" + port}})).status == 200);
+    CHECK(c.send("POST", "/api/line/pause", "", with({{"Origin", "http://127.0.0.1:" + port}}))
+              .status == 200);
 }

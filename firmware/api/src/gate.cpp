@@ -2,6 +2,8 @@
 
 #include <openssl/crypto.h>
 
+#include <algorithm>
+#include <cctype>
 #include <regex>
 
 #include "routes.hpp"
@@ -83,8 +85,46 @@ std::string text_field(const nlohmann::json& j, const char* field, size_t max) {
 
 }  // namespace
 
+namespace {
+
+std::string lower(std::string s) {
+    for (char& c : s)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+// "name:port", "[v6]:port" or "name" -> "name" / "[v6]".
+std::string host_part(const std::string& authority) {
+    if (authority.starts_with('[')) {
+        const size_t end = authority.find(']');
+        return end == std::string::npos ? authority : authority.substr(0, end + 1);
+    }
+    return authority.substr(0, authority.find(':'));
+}
+
+}  // namespace
+
+std::optional<std::string> Gate::foreign_host(const httplib::Request& req) const {
+    const auto known = [&](const std::string& name) {
+        return std::find(host_names_.begin(), host_names_.end(), lower(name)) != host_names_.end();
+    };
+    const std::string host = req.get_header_value("Host");
+    if (!known(host_part(host)))
+        return "Host '" + host + "' is not one of this controller's names ([api] host_names)";
+    if (req.has_header("Origin")) {
+        const std::string origin = req.get_header_value("Origin");
+        const size_t scheme = origin.find("://");
+        if (scheme == std::string::npos || !known(host_part(origin.substr(scheme + 3))))
+            return "Origin '" + origin +
+                   "' is not one of this controller's names ([api] host_names)";
+    }
+    return std::nullopt;
+}
+
 Gate::Gate(const AccessSettings& settings)
     : settings_(settings.sessions), sessions_(settings.sessions), limiter_(settings.sign_in) {
+    for (const std::string& name : settings.host_names)
+        host_names_.push_back(lower(name));
     int iterations = 1;
     for (const User& u : settings.users) {
         try {
@@ -103,6 +143,10 @@ Gate::Gate(const AccessSettings& settings)
 httplib::Server::HandlerResponse Gate::check(const httplib::Request& req, httplib::Response& res) {
     using R = httplib::Server::HandlerResponse;
     if (!req.path.starts_with("/api/")) return R::Unhandled;
+    if (const auto why = foreign_host(req)) {
+        reply_error(res, 403, "host", *why);
+        return R::Handled;
+    }
     if (req.path == "/api/session" && req.method == "POST") return R::Unhandled;
     // The event stream is no activity of the user's: an open panel alone must not keep a
     // session from going idle.
@@ -139,7 +183,7 @@ Session Gate::sign_in(const httplib::Request& req) {
     const std::string user = text_field(j, "user", 64);
     const std::string password = text_field(j, "password", 1024);
 
-    if (const auto wait = limiter_.wait(req.remote_addr, user); wait.count() > 0)
+    if (const auto wait = limiter_.begin(req.remote_addr, user); wait.count() > 0)
         throw ApiError(
             429, "user",
             "too many failed sign-ins; try again in " + std::to_string(wait.count()) + " s");
@@ -147,11 +191,8 @@ Session Gate::sign_in(const httplib::Request& req) {
     const bool ok =
         verify_password(password, it == users_.end() ? dummy_hash_ : it->second.password_hash) &&
         it != users_.end();
-    if (!ok) {
-        limiter_.failed(req.remote_addr, user);
-        throw ApiError(401, "password", "unknown user or wrong password");
-    }
-    limiter_.succeeded(user);
+    if (!ok) throw ApiError(401, "password", "unknown user or wrong password");
+    limiter_.succeeded(req.remote_addr, user);
     return sessions_.open(it->second);
 }
 

@@ -24,8 +24,9 @@ class Gate {
     // Throws std::invalid_argument on a duplicate user name or a malformed password hash.
     explicit Gate(const AccessSettings& settings);
 
-    // Pre-routing: answers 401 (no session), 403 (CSRF token or role) itself and returns
-    // Handled; Unhandled lets the request reach its route.
+    // Pre-routing: answers 403 (a Host or Origin not of this controller), 401 (no session),
+    // 403 (CSRF token or role) itself and returns Handled; Unhandled lets the request reach
+    // its route.
     httplib::Server::HandlerResponse check(const httplib::Request& req, httplib::Response& res);
 
     // POST /api/session: throws ApiError 400 (body), 401 (user or password), 429 (too many).
@@ -37,6 +38,10 @@ class Gate {
     std::chrono::seconds session_lifetime() const { return settings_.lifetime; }
 
   private:
+    // Why the request's Host or Origin is not one of host_names_, or nothing.
+    std::optional<std::string> foreign_host(const httplib::Request& req) const;
+
+    std::vector<std::string> host_names_;  // lower case
     std::map<std::string, User> users_;
     std::string dummy_hash_;  // verified against for unknown users: same time as a known one
     SessionSettings settings_;

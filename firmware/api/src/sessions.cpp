@@ -28,10 +28,16 @@ Session SessionStore::open(const User& user) {
     Session s{random_token(), random_token(), user.name, user.role, now, now};
     std::lock_guard lock(mutex_);
     std::erase_if(sessions_, [&](const auto& entry) { return expired(entry.second, now); });
-    while (int(sessions_.size()) >= std::max(1, settings_.max_sessions)) {
-        const auto oldest = std::min_element(
-            sessions_.begin(), sessions_.end(),
-            [](const auto& a, const auto& b) { return a.second.last_seen < b.second.last_seen; });
+    // Capped per user, the user's own oldest signed out first: a viewer signing in again and
+    // again must not sign the operator out. Users are the config's few, so this bounds all.
+    const auto mine = [&](const auto& entry) { return entry.second.user == user.name; };
+    while (std::count_if(sessions_.begin(), sessions_.end(), mine) >=
+           std::max(1, settings_.max_sessions)) {
+        auto oldest = sessions_.end();
+        for (auto it = sessions_.begin(); it != sessions_.end(); ++it)
+            if (mine(*it) &&
+                (oldest == sessions_.end() || it->second.last_seen < oldest->second.last_seen))
+                oldest = it;
         sessions_.erase(oldest);
     }
     sessions_.emplace(s.id, s);

@@ -13,8 +13,13 @@ std::string key(const char* kind, const std::string& name) {
     k += name;
     return k;
 }
-std::string user_key(const std::string& user) {
-    return key("user:", user);
+// A user's failures count per client address: a stranger guessing at the operator's name from
+// elsewhere must not lock the operator out at the panel's own address.
+std::string user_key(const std::string& address, const std::string& user) {
+    std::string k = key("user:", address);
+    k += '/';
+    k += user;
+    return k;
 }
 std::string address_key(const std::string& address) {
     return key("addr:", address);
@@ -38,29 +43,32 @@ std::chrono::seconds SignInLimiter::wait_for(const std::string& key, int limit,
                     std::chrono::ceil<std::chrono::seconds>(free_at - now));
 }
 
-std::chrono::seconds SignInLimiter::wait(const std::string& address, const std::string& user) {
+std::chrono::seconds SignInLimiter::begin(const std::string& address, const std::string& user) {
     const auto now = Clock::now();
     std::lock_guard lock(mutex_);
-    return std::max(wait_for(user_key(user), limits_.failures_per_user, now),
-                    wait_for(address_key(address), limits_.failures_per_address, now));
-}
-
-void SignInLimiter::failed(const std::string& address, const std::string& user) {
-    const auto now = Clock::now();
-    std::lock_guard lock(mutex_);
+    const auto wait = std::max(wait_for(user_key(address, user), limits_.failures_per_user, now),
+                               wait_for(address_key(address), limits_.failures_per_address, now));
+    if (wait.count() > 0) return wait;
     if (failures_.size() >= kMaxKeys)
         std::erase_if(failures_, [&](const auto& entry) {
             return entry.second.empty() || now - entry.second.back() >= limits_.window;
         });
     // Still full: the window is being flooded; the newest failures matter, forget the rest.
     if (failures_.size() >= kMaxKeys) failures_.clear();
-    failures_[user_key(user)].push_back(now);
+    // Counted as a failure now, under the lock that checked the limit: parallel attempts see
+    // each other before the slow password check, so no more than the limit get to make it.
+    failures_[user_key(address, user)].push_back(now);
     failures_[address_key(address)].push_back(now);
+    return std::chrono::seconds(0);
 }
 
-void SignInLimiter::succeeded(const std::string& user) {
+void SignInLimiter::succeeded(const std::string& address, const std::string& user) {
     std::lock_guard lock(mutex_);
-    failures_.erase(user_key(user));
+    failures_.erase(user_key(address, user));
+    // The attempt counted in begin() was no failure after all.
+    if (const auto it = failures_.find(address_key(address));
+        it != failures_.end() && !it->second.empty())
+        it->second.pop_back();
 }
 
 }  // namespace tilejet::api

@@ -26,7 +26,7 @@ struct SessionSettings {
     // A panel left signed in on the line is somebody else's hands on it after a shift change.
     std::chrono::seconds idle{std::chrono::hours(2)};
     std::chrono::seconds lifetime{std::chrono::hours(12)};
-    int max_sessions = 64;  // oldest signed out first when full
+    int max_sessions = 16;  // per user; the user's oldest signed out first when full
 };
 
 struct SignInLimits {
@@ -40,6 +40,10 @@ struct AccessSettings {
     std::vector<User> users;
     SessionSettings sessions;
     SignInLimits sign_in;
+    // The names a request's Host header (and its Origin, when a browser sends one) may give,
+    // without port: anything else is refused, so that a page of another site whose name was
+    // rebound to this address (DNS rebinding) cannot use the API. [api] host and host_names.
+    std::vector<std::string> host_names{"localhost", "127.0.0.1", "[::1]"};
     // Open /api/events streams each hold one server thread; past this many, new ones get 503
     // so that the API itself always has threads left.
     int event_streams = 8;
