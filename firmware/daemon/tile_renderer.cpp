@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -58,6 +59,7 @@ TileRenderer::TileRenderer(const jobs::Job& job, const colour::ColourSettings& c
                                  job.spec.map_id +
                                  ": refusing to print other tiles under the same indices");
     transform_ = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
+    if (!previews_.empty() && preview_tiles_ > 0) clear_stale_previews(job, map.id_hex());
     // Convert once, copy many (design.md section 4): every tile of the job only copies bytes.
     cmyk_map_ = colour::convert_map(map, *transform_);
 }
@@ -75,6 +77,23 @@ Separations TileRenderer::render(std::int64_t index, int threads,
         !std::filesystem::exists(preview_path(index)))
         write_preview(s, preview_path(index));
     return s;
+}
+
+void TileRenderer::clear_stale_previews(const jobs::Job& job, const std::string& map_id) const {
+    // Previews are kept per job number, and a new job store (the demo's, a line's after a
+    // reinstall) numbers its jobs from 1 again: proofs left by another job of that number,
+    // of another design, would be shown as this one's. A stamp says whose they are.
+    namespace fs = std::filesystem;
+    const fs::path dir = previews_ / ("job-" + std::to_string(job_));
+    const std::string stamp = "created " + job.created + ", map " + map_id + ", seed " +
+                              std::to_string(job.spec.seed) + "\n";
+    std::error_code ec;
+    std::string found;
+    if (std::ifstream in(dir / "job.txt"); in) found.assign(std::istreambuf_iterator<char>(in), {});
+    if (found == stamp) return;
+    fs::remove_all(dir, ec);
+    fs::create_directories(dir, ec);
+    std::ofstream(dir / "job.txt") << stamp;
 }
 
 std::filesystem::path TileRenderer::preview_path(std::int64_t index) const {

@@ -38,6 +38,8 @@ class TileRenderer {
     std::filesystem::path preview_path(std::int64_t index) const;
 
   private:
+    void clear_stale_previews(const jobs::Job& job, const std::string& map_id) const;
+
     std::int64_t job_;
     std::filesystem::path previews_;
     int preview_tiles_ = 0;

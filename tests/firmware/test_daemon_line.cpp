@@ -420,3 +420,22 @@ TEST_CASE("a job pins its design: a design file replaced before the job resumes 
     CHECK(message.find(submitted_id) != std::string::npos);
     CHECK(message.find("is now map ") != std::string::npos);
 }
+
+TEST_CASE("previews left by another job of the same number are replaced, not shown as this job's",
+          "[daemon][line][previews]") {
+    // A new job store numbers jobs from 1 again (the demo makes one every run): the proofs of
+    // the last store's job 1, of another design, were kept and shown as the new job 1's.
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    const auto old_job = dir.path() / "previews" / "job-1";
+    std::filesystem::create_directories(old_job);
+    std::ofstream(old_job / "tile-0.png") << "a proof of another job";
+    test::DaemonProcess daemon(line, dir.path());
+    const auto id = submit(daemon, 4);
+    REQUIRE(id == 1);
+    wait_done(daemon, id, 30s);
+    std::ifstream proof(old_job / "tile-0.png", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(proof)), {});
+    CHECK(bytes.substr(1, 3) == "PNG");
+    CHECK(std::filesystem::exists(old_job / "job.txt"));
+}
