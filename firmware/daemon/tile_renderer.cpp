@@ -53,13 +53,13 @@ TileRenderer::TileRenderer(const jobs::Job& job, const colour::ColourSettings& c
                  tile_pixels(job.spec.tile_height_mm, job.spec.dpi),
                  layout.value_or(synth::TileLayout::Scatter), job.spec.wall_width};
     const synth::TextureMap map = synth::load_texture_map(job.spec.map);
-    if (!job.spec.map_id.empty() && map.id_hex() != job.spec.map_id)
+    const std::string map_id = map.id_hex();
+    if (!job.spec.map_id.empty() && map_id != job.spec.map_id)
         throw std::runtime_error(job.name() + ": design file " + job.spec.map + " is now map " +
-                                 map.id_hex() + ", the job was submitted with map " +
-                                 job.spec.map_id +
+                                 map_id + ", the job was submitted with map " + job.spec.map_id +
                                  ": refusing to print other tiles under the same indices");
     transform_ = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
-    if (!previews_.empty() && preview_tiles_ > 0) clear_stale_previews(job, map.id_hex());
+    if (!previews_.empty() && preview_tiles_ > 0) clear_stale_previews(job, map_id);
     // Convert once, copy many (design.md section 4): every tile of the job only copies bytes.
     cmyk_map_ = colour::convert_map(map, *transform_);
 }

@@ -54,6 +54,13 @@ struct Canvas {
     }
 };
 
+// Adds one use to every source pixel the blocks copied (their whole windows: what the cut kept
+// of each is not worth tracking).
+void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
+    for (const Placement& p : blocks)
+        usage(cv::Rect(p.source, p.at.size())) += 1;
+}
+
 // Starts of `count` blocks that cover [begin, end) with at least `overlap` between neighbours.
 std::vector<std::pair<int, int>> block_spans(int begin, int end, int block, int overlap) {
     const int length = end - begin;
@@ -106,17 +113,13 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
     cv::Mat usage(source_lab.size(), CV_32F, cv::Scalar(0));
-    const auto count = [&](const std::vector<Placement>& blocks) {
-        for (const Placement& p : blocks)
-            usage(cv::Rect(p.source, p.at.size())) += 1;
-    };
     // One after another: each strip sees what the strips before it copied.
     for (size_t i = 0; i < 2 * kinds; ++i) {
         const uint32_t a = uint32_t(i % kinds % size_t(k_)), b = uint32_t(i % kinds / size_t(k_));
         std::vector<Placement> blocks;
         (i < kinds ? horizontal_[i] : vertical_[i - kinds]) =
             make_strip(i < kinds, a, b, usage, blocks);
-        count(blocks);
+        count_uses(usage, blocks);
     }
     // Images are made in batches of a fixed size, whatever the threads, so that each avoids the
     // blocks of the batches before it and the set stays the same bytes on every machine.
@@ -130,7 +133,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         });
         for (const auto& b : batch) {
             placed.insert(placed.end(), b.begin(), b.end());
-            count(b);
+            count_uses(usage, b);
         }
     }
 }
@@ -176,8 +179,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     cv::Mat penalty;
     if (canvas.usage) {
         cv::Mat used = canvas.usage->clone();
-        for (const Placement& p : canvas.placed)
-            used(cv::Rect(p.source, p.at.size())) += 1;
+        count_uses(used, canvas.placed);
         cv::Mat sums;
         cv::integral(used, sums, CV_64F);
         const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
