@@ -53,6 +53,10 @@ void add_analyze_commands(CLI::App& app) {
         j["kind"] = synth::lattice_kind_name(l.kind);
         if (l.appearance_regularity) j["A"] = *l.appearance_regularity;
         if (l.geometry_regularity) j["G"] = *l.geometry_regularity;
+        if (l.kind == synth::LatticeKind::Courses) {
+            j["pitch"] = l.pitch;
+            j["note"] = "courses: v1 runs along them, v2 is the pitch across them in whole pixels";
+        }
         if (l.kind == synth::LatticeKind::Stochastic)
             j["note"] = "no lattice found: stochastic texture, unit vectors reported";
         std::printf("%s\n", j.dump().c_str());

@@ -67,6 +67,13 @@ cv::Mat apply_colour_gain(const cv::Mat& exemplar, const Lattice& lattice, doubl
             "--colour-gain needs a near-regular exemplar (brick, mosaic, textile); this one is "
             "stochastic: it has no lattice tiles whose colours could be made more or less alike");
     }
+    if (lattice.kind == LatticeKind::Courses) {
+        if (gain == 1) return exemplar.clone();
+        throw SynthError(
+            "--colour-gain needs a lattice of tiles; this exemplar has courses only (joints "
+            "anywhere along them), so it has no tiles whose colours could be made more or less "
+            "alike");
+    }
 
     const TileLayout t = lay_out_tiles(exemplar.size(), lattice);
     const int dims = 3 * t.phases;

@@ -10,13 +10,15 @@ namespace tilejet::synth::detail {
 
 // Translations that keep a near-regular texture's structure: the lattice's points, give or take
 // a few pixels (design.md section 7: offsets restricted to lattice translations within +-3 px).
+// For courses: any distance along them, whole pitches across them, give or take a twelfth of
+// the pitch (a brick wall's mortar is a pixel or two thick on a 17 px pitch: 3 px broke it).
 class LatticeTranslations {
   public:
     static constexpr int kTolerance = 3;  // px
     explicit LatticeTranslations(const Lattice& lattice);
 
     cv::Point nearest(cv::Point2d d) const;  // the lattice point closest to d
-    bool allows(cv::Point d) const;          // d within kTolerance of a lattice point (each axis)
+    bool allows(cv::Point d) const;          // d within tolerance of a lattice point (each axis)
     // A random allowed translation near `target`.
     cv::Point near(cv::Point2d target, Rng& rng) const;
 
@@ -28,6 +30,8 @@ class LatticeTranslations {
   private:
     cv::Point v1_, v2_;
     double det_;
+    double pitch_ = 0;  // courses only: the exact pitch along v2
+    int tolerance_ = kTolerance;
 };
 
 }  // namespace tilejet::synth::detail

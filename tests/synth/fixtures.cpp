@@ -90,6 +90,37 @@ cv::Mat make_lattice_texture(Basis b, cv::Size size, uint32_t seed, bool ellipse
     return out;
 }
 
+cv::Mat make_course_texture(double pitch, cv::Size size, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0, 6), brick_shift(0, 18);
+    std::uniform_int_distribution<int> length(24, 60);
+    const cv::Vec3d mortar(200, 200, 190), brick(170, 80, 60);
+    cv::Mat out(size, CV_8UC3);
+    const int courses = int(std::ceil(size.height / pitch)) + 1;
+    for (int course = 0; course < courses; ++course) {
+        // Where this course's joints fall, and each brick's colour.
+        std::vector<std::pair<int, cv::Vec3d>> bricks;  // (start x, colour)
+        for (int x = -length(rng); x < size.width; x += length(rng))
+            bricks.push_back(
+                {x, brick + cv::Vec3d(brick_shift(rng), brick_shift(rng), brick_shift(rng))});
+        const int y0 = int(std::ceil(course * pitch)), y1 = int(std::ceil((course + 1) * pitch));
+        for (int y = y0; y < std::min(y1, size.height); ++y) {
+            const bool bed_joint = y - course * pitch < 3;
+            size_t b = 0;
+            for (int x = 0; x < size.width; ++x) {
+                while (b + 1 < bricks.size() && bricks[b + 1].first <= x)
+                    ++b;
+                const bool head_joint = x - bricks[b].first < 3;
+                const cv::Vec3d base = bed_joint || head_joint ? mortar : bricks[b].second;
+                cv::Vec3b& px = out.at<cv::Vec3b>(y, x);
+                for (int c = 0; c < 3; ++c)
+                    px[c] = cv::saturate_cast<uint8_t>(base[c] + noise(rng));
+            }
+        }
+    }
+    return out;
+}
+
 bool same_lattice(const synth::Lattice& found, Basis truth, double tol) {
     auto on_truth = [&](cv::Point v) {
         for (int a = -4; a <= 4; ++a)

@@ -50,6 +50,11 @@ struct Basis {
 // per-pixel colour noise, cropped to `size` (not a whole number of periods).
 cv::Mat make_lattice_texture(Basis b, cv::Size size, uint32_t seed, bool ellipse = false);
 
+// Brick laid in horizontal courses `pitch` px apart (a fraction of a pixel allowed), bricks of
+// random length (24 to 60 px) in mortar, so joints fall anywhere along a course: courses, no
+// two-way lattice. Each brick has its own colour; per-pixel noise.
+cv::Mat make_course_texture(double pitch, cv::Size size, uint32_t seed);
+
 // Whether every detected vector is (within tol px) a lattice point of the truth and the two
 // lattices have the same cell area: then they are the same lattice up to sign, swap and adding
 // one vector to the other.

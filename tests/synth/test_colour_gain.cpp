@@ -83,6 +83,14 @@ TEST_CASE("colour gain: stochastic exemplars and negative gains are errors", "[c
     CHECK_THROWS_WITH(apply_colour_gain(brick(), detect_lattice(brick()), -1),
                       Catch::Contains("--colour-gain"));
 
+    // Courses have no tiles to compare: joints fall anywhere along them.
+    const cv::Mat courses = tilejet::test::make_course_texture(16.6, {200, 200}, 1);
+    const Lattice rows = detect_lattice(courses);
+    REQUIRE(rows.kind == LatticeKind::Courses);
+    CHECK(cv::norm(apply_colour_gain(courses, rows, 1), courses, cv::NORM_INF) == 0);
+    CHECK_THROWS_WITH(apply_colour_gain(courses, rows, 0.5),
+                      Catch::Contains("--colour-gain") && Catch::Contains("courses"));
+
     BuildParams p;
     p.colour_gain = 2;
     CHECK_THROWS_WITH(build_texture_map(marble, p),

@@ -104,3 +104,104 @@ TEST_CASE("a lattice-aware map keeps the exemplar's lattice at four times its si
         render_region(build_texture_map(exemplar, p), 5, {-3000, 7000, 4 * 233, 4 * 191}));
     REQUIRE_FALSE(same_lattice(off, brick));
 }
+
+TEST_CASE("brick courses with joints anywhere are found, to a fraction of a pixel",
+          "[lattice][courses]") {
+    for (const double pitch : {16.6, 21.3, 27.0})
+        for (const uint32_t seed : {1u, 2u}) {
+            const cv::Mat rows = tilejet::test::make_course_texture(pitch, {260, 230}, seed);
+            const Lattice l = detect_lattice(rows);
+            INFO("pitch " << pitch << " seed " << seed << ": kind " << lattice_kind_name(l.kind)
+                          << " found " << l.pitch);
+            REQUIRE(l.kind == LatticeKind::Courses);
+            REQUIRE(std::abs(l.pitch - pitch) <= 0.25);
+            REQUIRE(l.v1 == cv::Point(1, 0));
+            REQUIRE(l.v2 == cv::Point(0, int(std::lround(l.pitch))));
+            // Courses standing up are found across x.
+            cv::Mat columns;
+            cv::transpose(rows, columns);
+            const Lattice t = detect_lattice(columns);
+            REQUIRE(t.kind == LatticeKind::Courses);
+            REQUIRE(std::abs(t.pitch - pitch) <= 0.25);
+            REQUIRE(t.v1 == cv::Point(0, 1));
+        }
+    // A two-way lattice stays one, although its rows are courses too.
+    const Lattice bond =
+        detect_lattice(make_lattice_texture({{40, 0}, {20, 17}}, {233, 191}, 1, false));
+    REQUIRE(bond.kind != LatticeKind::Courses);
+}
+
+TEST_CASE("laid tiles with two periods in the exemplar are found", "[lattice]") {
+    for (const uint32_t seed : {1u, 2u, 3u}) {
+        const Basis tiles{{100, 0}, {0, 100}};
+        const Lattice l = detect_lattice(make_lattice_texture(tiles, {200, 200}, seed, false));
+        INFO("seed " << seed << ": v1 (" << l.v1.x << "," << l.v1.y << ") v2 (" << l.v2.x << ","
+                     << l.v2.y << ") kind " << lattice_kind_name(l.kind));
+        REQUIRE(l.kind != LatticeKind::Stochastic);
+        REQUIRE(same_lattice(l, tiles));
+    }
+}
+
+namespace {
+
+// How well the mortar rows line up across the vertical cell borders of a render of courses:
+// the correlation of the luminance row profiles just left and just right of each border.
+double course_continuity(const cv::Mat& rgb, int first_border, int cell_width) {
+    cv::Mat grey;
+    cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+    grey.convertTo(grey, CV_64F);
+    std::vector<double> left, right;
+    for (int xb = first_border; xb + 4 <= grey.cols; xb += cell_width) {
+        if (xb < 4) continue;
+        for (int y = 0; y < grey.rows; ++y) {
+            left.push_back(cv::mean(grey(cv::Rect(xb - 4, y, 4, 1)))[0]);
+            right.push_back(cv::mean(grey(cv::Rect(xb, y, 4, 1)))[0]);
+        }
+    }
+    cv::Mat a(left, true), b(right, true);
+    cv::Scalar ma, sa, mb, sb;
+    cv::meanStdDev(a, ma, sa);
+    cv::meanStdDev(b, mb, sb);
+    return cv::mean((a - ma[0]).mul(b - mb[0]))[0] / (sa[0] * sb[0]);
+}
+
+}  // namespace
+
+TEST_CASE("a map of brick courses keeps the courses running across cells", "[lattice][courses]") {
+    const double pitch = 16.6;
+    const cv::Mat exemplar = tilejet::test::make_course_texture(pitch, {300, 300}, 5);
+    const Lattice truth = detect_lattice(exemplar);
+    REQUIRE(truth.kind == LatticeKind::Courses);
+    BuildParams p;
+    p.corner_colours = 2;
+    p.patches = 16;
+    p.candidates = 128;
+    const TextureMap map = build_texture_map(exemplar, p);
+    INFO("cell " << map.cell_width << "x" << map.cell_height);
+    // Cells hold whole courses, to within half a pixel.
+    const double courses = map.cell_height / pitch;
+    REQUIRE(std::abs(courses - std::round(courses)) * pitch <= 0.5);
+    const Region region{-3 * map.cell_width, 7 * map.cell_height, 6 * map.cell_width,
+                        4 * map.cell_height};
+    const cv::Mat out = render_region(map, 5, region);
+    const Lattice kept = detect_lattice(out);
+    // The score is how far the courses stand out at whole pitches: a course that steps or
+    // changes its width at a cell border lowers it.
+    INFO("exemplar: courses stand "
+         << truth.score << " above; rendered: " << lattice_kind_name(kept.kind) << ", pitch "
+         << kept.pitch << ", " << kept.score << " above");
+    REQUIRE(kept.kind == LatticeKind::Courses);
+    REQUIRE(std::abs(kept.pitch - pitch) <= 0.3);
+    REQUIRE(kept.score >= 0.8 * truth.score);
+    REQUIRE(course_continuity(out, 0, map.cell_width) >= 0.8);
+
+    // Without the lattice, each cell's courses start where they happen to: they step at the
+    // borders, and the check above can fail.
+    p.lattice = BuildParams::Lattice::Off;
+    const TextureMap free = build_texture_map(exemplar, p);
+    const Lattice broken = detect_lattice(
+        render_region(free, 5, Region{0, 0, 6 * free.cell_width, 4 * free.cell_height}));
+    INFO("without the lattice: " << lattice_kind_name(broken.kind) << ", pitch " << broken.pitch
+                                 << ", " << broken.score << " above");
+    REQUIRE(broken.score < 0.6 * truth.score);
+}

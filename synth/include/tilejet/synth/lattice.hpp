@@ -1,7 +1,9 @@
 #pragma once
 
 // Lattices of near-regular exemplars (design.md section 7): brick, mosaics, tiled floors and
-// textiles repeat along two translation vectors v1, v2 (the lattice), with variation.
+// textiles repeat along two translation vectors v1, v2 (the lattice), with variation. Laid
+// brick and setts often repeat one way only: courses at a steady pitch, whose joints fall
+// anywhere along them (bricks and stones of varying length).
 
 #include <array>
 #include <opencv2/core/mat.hpp>
@@ -10,7 +12,7 @@
 
 namespace tilejet::synth {
 
-enum class LatticeKind { Regular, NearRegular, Stochastic };
+enum class LatticeKind { Regular, NearRegular, Courses, Stochastic };
 std::string_view lattice_kind_name(LatticeKind kind);
 
 struct Lattice {
@@ -21,6 +23,9 @@ struct Lattice {
     // exemplar with itself shifted by the lattice's vectors; A (appearance) is how alike the
     // lattice's tiles look, 1 minus their variance about the mean tile relative to the image's.
     std::optional<double> geometry_regularity, appearance_regularity;
+    // Courses: v1 is the unit vector along them ((1,0) or (0,1)), v2 the pitch rounded to whole
+    // pixels across them, `pitch` the pitch itself (a fraction of a pixel adds up over courses).
+    double pitch = 0;
     int area() const { return std::abs(v1.x * v2.y - v1.y * v2.x); }
 };
 
