@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "tilejet/drivers/config_section.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
@@ -27,8 +28,24 @@ constexpr uint64_t kCoverageSeed = 1;
 
 struct BuildOptions {
     std::string exemplar, output, enlarge = "quilt";
+    double exemplar_dpi = 0, dpi = 0;
+    std::string config;  // where the line's [render] dpi comes from when --dpi is not given
     synth::BuildParams params;
 };
+
+// The print resolution a map is built for: --dpi, else the line's [render] dpi.
+double print_dpi(const BuildOptions& o) {
+    if (o.dpi > 0) return o.dpi;
+    const std::string path = o.config.empty() ? "config/tilejet.toml" : o.config;
+    if (o.config.empty() && !std::filesystem::exists(path))
+        throw synth::SynthError(
+            "map build needs the resolution the design will print at: give --dpi P, or "
+            "--config FILE whose [render] dpi it takes (" +
+            path + " does not exist here)");
+    const toml::table root = drivers::load_toml_file(path);
+    drivers::ConfigSection render(root["render"].as_table(), {path}, "render");
+    return double(render.get_int("dpi", 360, 10, 2400));
+}
 
 // A one-line progress meter, only when stderr is a terminal (logs and CI stay clean).
 synth::BuildProgress terminal_progress() {
@@ -55,16 +72,32 @@ PatchCounts count_patches(const synth::TextureMap& map) {
 
 void run_build(const BuildOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    const cv::Mat exemplar = synth::load_exemplar(o.exemplar);
-    const synth::TextureMap map = synth::build_texture_map(exemplar, o.params, terminal_progress());
+    const cv::Mat scanned = synth::load_exemplar(o.exemplar);
+    // A design has a physical size: the exemplar is resampled once, before anything else, from
+    // the resolution it was scanned at to the one it prints at.
+    const double exemplar_dpi =
+        o.exemplar_dpi > 0 ? o.exemplar_dpi : synth::read_exemplar_dpi(o.exemplar).value_or(0);
+    if (exemplar_dpi <= 0)
+        throw synth::SynthError(
+            "exemplar '" + o.exemplar +
+            "' records no resolution: give the pixels per inch it was scanned or photographed "
+            "at with --exemplar-dpi D (a 600 mm slab 4724 px across is 200 dpi), or save it with "
+            "one (PNG pHYs, JPEG JFIF or Exif, TIFF XResolution)");
+    synth::BuildParams params = o.params;
+    params.dpi = print_dpi(o);
+    params.exemplar_dpi = exemplar_dpi;
+    const cv::Mat exemplar =
+        synth::resample_exemplar(scanned, exemplar_dpi, params.dpi, o.exemplar);
+    const synth::TextureMap map = synth::build_texture_map(exemplar, params, terminal_progress());
     synth::save_texture_map(map, o.output);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const PatchCounts counts = count_patches(map);
     std::printf(
-        "wrote %s: map %s, cell %dx%d, %zu cell images (%d corner colours), %zu A + %zu B "
-        "patches, %ju bytes, %.1f s\n",
-        o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.cell_width, map.cell_height,
+        "wrote %s: map %s, %g dpi (exemplar %g dpi, %dx%d px), cell %dx%d, %zu cell images (%d "
+        "corner colours), %zu A + %zu B patches, %ju bytes, %.1f s\n",
+        o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.build.dpi, map.build.exemplar_dpi,
+        map.build.exemplar_width, map.build.exemplar_height, map.cell_width, map.cell_height,
         map.cell_images.size(), map.corner_colours, counts.a, counts.b,
         uintmax_t(std::filesystem::file_size(o.output)), seconds);
 }
@@ -84,6 +117,15 @@ void run_info(const std::string& path) {
     j["source_width"] = map.source.cols;
     j["source_height"] = map.source.rows;
     j["bytes"] = std::filesystem::file_size(path);
+    // The design's physical size; null for maps built before resolutions were recorded.
+    if (map.build.dpi > 0) {
+        j["dpi"] = map.build.dpi;
+        j["exemplar_dpi"] = map.build.exemplar_dpi;
+        j["exemplar_mm"] = {map.build.exemplar_width / map.build.dpi * 25.4,
+                            map.build.exemplar_height / map.build.dpi * 25.4};
+    } else {
+        j["dpi"] = nullptr;
+    }
     j["patch_coverage"] = synth::patch_coverage(map, kCoverageSeed, kCoverageRegion);
     j["build"] = {{"seed", map.build.seed},
                   {"exemplar_width", map.build.exemplar_width},
@@ -104,6 +146,17 @@ void add_map_commands(CLI::App& app) {
     CLI::App* b = map->add_subcommand("build", "build a texture map from an exemplar photo");
     b->add_option("EXEMPLAR", build->exemplar, "PNG, JPEG or TIFF exemplar")->required();
     b->add_option("-o,--output", build->output, "texture map file to write")->required();
+    b->add_option("--exemplar-dpi", build->exemplar_dpi,
+                  "the exemplar's resolution in pixels per inch (default: what its file records; "
+                  "required when it records none)")
+        ->check(CLI::Range(1.0, 100000.0));
+    b->add_option("--dpi", build->dpi,
+                  "the resolution the design prints at; the exemplar is resampled to it "
+                  "(default: [render] dpi of --config)")
+        ->check(CLI::Range(10.0, 2400.0));
+    b->add_option("--config", build->config,
+                  "config file whose [render] dpi is the default --dpi (default "
+                  "config/tilejet.toml)");
     b->add_option("--cell", build->params.cell_size, "cell size in px (default 128)");
     b->add_option("--corner-colours", build->params.corner_colours,
                   "corner colours K: K^4 cell images that meet seamlessly whatever the hash "

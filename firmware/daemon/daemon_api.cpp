@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -191,11 +192,27 @@ json DaemonApi::submit(const jobs::JobSpec& submitted) {
     // Rejected here rather than when the line reaches the job: a queue must not stall on a
     // job that can never print.
     jobs::JobSpec spec = submitted;
+    double map_dpi = 0;
     try {
-        spec.map_id = synth::load_texture_map(spec.map).id_hex();
+        const synth::TextureMap map = synth::load_texture_map(spec.map);
+        spec.map_id = map.id_hex();
+        map_dpi = map.build.dpi;
     } catch (const std::exception& e) {
         throw api::ApiError(400, "map", std::string("map: ") + e.what());
     }
+    // A design prints at its physical size: at the dpi its map is built for, never rescaled.
+    // Maps that record no dpi (built before they did) print at any.
+    if (spec.dpi == 0) spec.dpi = map_dpi > 0 ? int(std::lround(map_dpi)) : config_.render.dpi;
+    if (map_dpi > 0 && std::abs(spec.dpi - map_dpi) > 0.5) {
+        char built[32];
+        std::snprintf(built, sizeof built, "%g", map_dpi);
+        throw api::ApiError(400, "dpi",
+                            "dpi: the job asks for " + std::to_string(spec.dpi) + " dpi, but " +
+                                spec.map + " is built for " + built + " dpi: submit at " + built +
+                                " dpi, or build the map again with --dpi " +
+                                std::to_string(spec.dpi));
+    }
+    api::check_tile_fits(spec);
     try {
         colour::CmykTransform transform(job_colour(spec, config_.colour));
     } catch (const std::exception& e) {

@@ -23,7 +23,8 @@ class DaemonApi : public api::ApiBackend {
     nlohmann::json jobs() override;
     std::optional<nlohmann::json> job(std::int64_t id) override;
     nlohmann::json command(std::string_view name) override;
-    int default_dpi() const override { return config_.render.dpi; }
+    // A job that gives no dpi prints its design at the design's dpi (submit).
+    int default_dpi() const override { return 0; }
     api::AccessSettings access() const override { return config_.api.access; }
 
     std::string tile_png(std::int64_t job, std::int64_t index, int max_side) override;

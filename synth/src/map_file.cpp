@@ -37,8 +37,10 @@ constexpr uint32_t kMaxRawSection = 256u << 20;
 constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30, kMaxRawTotal = uint64_t(1) << 30;
 // The sections a map is made of; any other is refused (a file of unknown sections that
 // inflate to 256 MiB each, with valid checksums and id, cost every load 2 GB).
-constexpr std::array<std::string_view, 9> kKnownTags = {"META", "CSET", "SRCE", "CELL", "PATA",
-                                                        "PATB", "OVLA", "OVLB", "IDNT"};
+constexpr std::array<std::string_view, 10> kKnownTags = {"META", "CSET", "PHYS", "SRCE", "CELL",
+                                                         "PATA", "PATB", "OVLA", "OVLB", "IDNT"};
+// PHYS: print and exemplar resolutions, pixels per inch.
+constexpr double kMinDpi = 1, kMaxDpi = 100000;
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
 constexpr uint32_t kMaxCellImages =
@@ -237,6 +239,13 @@ std::vector<Section> content_sections(const TextureMap& map) {
         Writer w;
         w.le<uint32_t>(uint32_t(map.corner_colours));
         out.push_back({"CSET", 0, std::move(w.bytes)});
+    }
+    // Likewise only maps that know their size: the id of a map built without stays what it was.
+    if (map.build.dpi > 0) {
+        Writer w;
+        w.f64(map.build.dpi);
+        w.f64(map.build.exemplar_dpi);
+        out.push_back({"PHYS", 0, std::move(w.bytes)});
     }
     {
         Writer w;
@@ -451,6 +460,16 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         map.build.candidates = int(r.le<uint32_t>("candidates"));
         map.build.active_per_cell = r.f64("active patches per cell");
         r.done();
+    }
+    if (where_is.count({"PHYS", 0})) {
+        Reader r = section("PHYS", 0);
+        const double dpi = r.f64("dpi"), exemplar_dpi = r.f64("exemplar dpi");
+        r.done();
+        if (!(dpi >= kMinDpi && dpi <= kMaxDpi))
+            r.fail("dpi " + std::to_string(dpi) + " is out of range");
+        if (!(exemplar_dpi == 0 || (exemplar_dpi >= kMinDpi && exemplar_dpi <= kMaxDpi)))
+            r.fail("exemplar dpi " + std::to_string(exemplar_dpi) + " is out of range");
+        map.build.dpi = dpi, map.build.exemplar_dpi = exemplar_dpi;
     }
     if (where_is.count({"CSET", 0}) || images != 1) {
         Reader r = section("CSET", 0);

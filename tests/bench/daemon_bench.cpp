@@ -35,10 +35,16 @@ long peak_rss_mb(pid_t pid) {
     return -1;
 }
 
+// The small demo map built for `dpi` (tests/CMakeLists.txt): a job prints a design at the
+// resolution its map is built for.
+std::string map_at(int dpi) {
+    return std::string(TILEJET_TEST_MAP_DIR) + "/small-" + std::to_string(dpi) + ".tjmap";
+}
+
 void render_path(double tile_mm, int dpi, int tiles) {
     jobs::Job job;
     job.id = 1;
-    job.spec.map = TILEJET_TEST_MAP;
+    job.spec.map = map_at(dpi);
     job.spec.seed = 7;
     job.spec.tiles = tiles;
     job.spec.tile_width_mm = job.spec.tile_height_mm = tile_mm;
@@ -137,7 +143,7 @@ void on_the_line(double tile_mm, int dpi, const std::vector<int>& speeds, int ti
         test::DaemonProcess daemon(line, dir.path(), d);
         const auto [status, body] = daemon.request(
             "POST", "/api/jobs",
-            R"({"map":")" TILEJET_TEST_MAP R"(","seed":11,"tiles":)" + std::to_string(tiles) +
+            R"({"map":")" + map_at(dpi) + R"(","seed":11,"tiles":)" + std::to_string(tiles) +
                 R"(,"tile_mm":")" + std::to_string(int(tile_mm)) + "x" +
                 std::to_string(int(tile_mm)) + R"(","dpi":)" + std::to_string(dpi) + "}");
         if (status != 201) throw std::runtime_error("job refused: " + body.dump());

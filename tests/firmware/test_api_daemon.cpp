@@ -201,6 +201,42 @@ TEST_CASE("an engineer adds a design; an operator may not", "[api][daemon][desig
     CHECK(status == 201);
 }
 
+TEST_CASE("a job prints its design at the design's dpi: another is refused, none takes it",
+          "[api][daemon][jobs][dpi]") {
+    test::LinesimProcess line(line_options());
+    test::TempDir dir;
+    test::DaemonProcess daemon(line, dir.path());
+    // small.tjmap is built for 20 dpi (tests/CMakeLists.txt).
+    auto [status, body] = daemon.request("POST", "/api/jobs",
+                                         R"({"map":")" TILEJET_TEST_MAP
+                                         R"(","seed":1,"tiles":1,"tile_mm":"200x200","dpi":30})");
+    INFO(body.dump());
+    CHECK(status == 400);
+    CHECK(body["field"] == "dpi");
+    const std::string message = body["error"].get<std::string>();
+    CHECK_THAT(message, Catch::Contains("30 dpi") && Catch::Contains("built for 20 dpi"));
+    // Without a dpi the job takes the design's, whatever the line's default.
+    std::tie(status, body) = daemon.request("POST", "/api/jobs",
+                                            R"({"map":")" TILEJET_TEST_MAP
+                                            R"(","seed":1,"tiles":1,"tile_mm":"200x200"})");
+    REQUIRE(status == 201);
+    CHECK(body["dpi"] == 20);
+    // The command line says the same.
+    const std::string command = "TILEJET_API=127.0.0.1:" + std::to_string(daemon.port()) +
+                                " TILEJET_USER=" + test::kTestUsers[0].name +
+                                " TILEJET_PASSWORD=" + test::kTestUsers[0].password + " " +
+                                TILEJET_CLI " job submit --map " TILEJET_TEST_MAP +
+                                " --seed 1 --tiles 1 --tile-mm 200x200 --dpi 30 2>&1";
+    std::string out;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe);
+    char buffer[512];
+    while (std::fgets(buffer, sizeof buffer, pipe))
+        out += buffer;
+    CHECK(pclose(pipe) != 0);
+    CHECK_THAT(out, Catch::Contains("30 dpi") && Catch::Contains("built for 20 dpi"));
+}
+
 TEST_CASE(
     "of two uploads of one new design name exactly one wins and the file holds its bytes; "
     "a symlink planted in the folder is never written through",

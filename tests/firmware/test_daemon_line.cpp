@@ -95,8 +95,8 @@ test::DaemonOptions render_bound_daemon_options(int queue_tiles) {
 std::int64_t submit_large_tiles(const test::DaemonProcess& d, int seed, int tiles) {
     const auto [status, body] = d.request(
         "POST", "/api/jobs",
-        R"({"map":")" TILEJET_TEST_MAP R"(","seed":)" + std::to_string(seed) + R"(,"tiles":)" +
-            std::to_string(tiles) + R"(,"tile_mm":"600x600","dpi":200})");
+        R"({"map":")" TILEJET_TEST_MAP_200DPI R"(","seed":)" + std::to_string(seed) +
+            R"(,"tiles":)" + std::to_string(tiles) + R"(,"tile_mm":"600x600","dpi":200})");
     INFO(body.dump());
     REQUIRE(status == 201);
     return body.at("id").get<std::int64_t>();

@@ -102,11 +102,11 @@ TEST_CASE("map build --colour-gain on a stochastic exemplar is an error naming t
     const test::TempDir dir;
     const std::string marble = std::string(TILEJET_SOURCE_DIR) + "/config/demo/green-marble.png";
     const Run r =
-        run(dir, "map build " + marble + " --colour-gain 2 -o " + (dir / "m.tjmap").string());
+        run(dir, "map build " + marble + " --exemplar-dpi 50 --dpi 50 --colour-gain 2 -o " + (dir / "m.tjmap").string());
     CHECK(r.status != 0);
     CHECK_THAT(r.output, Catch::Contains("--colour-gain") && Catch::Contains("stochastic"));
     const Run e =
-        run(dir, "map build " + marble + " --enlarge poisson -o " + (dir / "m.tjmap").string());
+        run(dir, "map build " + marble + " --exemplar-dpi 50 --dpi 50 --enlarge poisson -o " + (dir / "m.tjmap").string());
     CHECK(e.status != 0);
     CHECK_THAT(e.output, Catch::Contains("--enlarge") && Catch::Contains("poisson"));
 }

@@ -96,11 +96,14 @@ jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
     }
     if (j.contains("wall_width"))
         spec.wall_width = int(integer(j["wall_width"], "wall_width", 1, 100000));
-    // One tile's separations must fit the heads' protocol and memory: 4 bytes per pixel.
+    if (spec.dpi > 0) check_tile_fits(spec);
+    return spec;
+}
+
+void check_tile_fits(const jobs::JobSpec& spec) {
     const double px = spec.tile_width_mm / 25.4 * spec.dpi * spec.tile_height_mm / 25.4 * spec.dpi;
     if (px * 4 > double(1u << 30))
         bad("dpi", "a tile of this size and dpi exceeds 1 GiB of separations");
-    return spec;
 }
 
 }  // namespace tilejet::api

@@ -37,6 +37,9 @@ struct BuildParams {
     // How an exemplar under twice the cell size is enlarged into the patches' source: quilting
     // (toroidal, lattice-aware; the default), rsgf or enm (synthesize.hpp).
     SynthMethod enlarge = SynthMethod::Quilt;
+    // Recorded in the map (BuildRecord): the print resolution the exemplar has already been
+    // resampled to (resample_exemplar), and the resolution it was scanned at. 0: unknown.
+    double dpi = 0, exemplar_dpi = 0;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
 
 #include "tilejet/synth/error.hpp"
 
@@ -15,6 +17,18 @@ inline constexpr int64_t kMaxExemplarPixels = int64_t(16) << 20;
 // Reads a PNG, JPEG or TIFF exemplar (8 or 16 bit, grey, RGB or with alpha) as 8-bit RGB.
 // Throws SynthError naming the file when it cannot be read, decoded, or is out of limits.
 cv::Mat load_exemplar(const std::filesystem::path& path);
+
+// The exemplar's resolution in pixels per inch as its file records it: PNG pHYs, JPEG JFIF
+// (APP0) or Exif (APP1), TIFF XResolution and ResolutionUnit. Nothing when the file records
+// none (or only an aspect ratio). Throws SynthError naming the file when the record is damaged
+// or the pixels are not square.
+std::optional<double> read_exemplar_dpi(const std::filesystem::path& path);
+
+// `rgb` (CV_8UC3) scanned at `from_dpi`, resampled for printing at `to_dpi`: area averaging
+// when it shrinks, Lanczos when it grows. Throws SynthError naming `name`, before allocating,
+// when the result would be out of the exemplar limits.
+cv::Mat resample_exemplar(const cv::Mat& rgb, double from_dpi, double to_dpi,
+                          const std::string& name);
 
 // Checks an in-memory exemplar (CV_8UC3 RGB) against the limits; `name` is used in messages.
 void check_exemplar(const cv::Mat& rgb, const std::string& name);

@@ -74,6 +74,10 @@ struct BuildRecord {
     int patches_requested = 0;
     int candidates = 0;
     double active_per_cell = 10;  // expected active patches per cell: eta = active_per_cell / |set|
+    // The design's physical size: the print resolution the map is built for (its plane's pixels
+    // per inch) and the exemplar's own, before it was resampled to that. 0: not recorded (maps
+    // built before resolutions were, and library builds that give none).
+    double dpi = 0, exemplar_dpi = 0;
 };
 
 struct TextureMap {

@@ -23,6 +23,7 @@ class ApiBackend {
     virtual std::optional<nlohmann::json> job(std::int64_t id) = 0;
     // "pause" | "resume" | "stop" | "acknowledge"
     virtual nlohmann::json command(std::string_view name) = 0;
+    // The dpi of jobs that give none; 0: submit takes the design's.
     virtual int default_dpi() const = 0;
     // Who may sign in, and the session and sign-in limits (the config's [api] and [[users]]).
     virtual AccessSettings access() const { return {}; }

@@ -27,8 +27,13 @@ inline constexpr std::size_t kMaxBodyBytes = 64 * 1024;
 
 // POST /api/jobs: {"map": "/abs/path.tjmap", "seed": 7, "tiles": 50, "tile_mm": "300x300" or
 // [300, 300], "dpi": 100, "profile": "/abs/line.icc", "layout": "scatter"|"wall",
-// "wall_width": 4}. `default_dpi` fills a missing dpi. Throws ApiError (400) naming the field.
+// "wall_width": 4}. `default_dpi` fills a missing dpi; 0 leaves it 0, for the backend to take
+// the design's. Throws ApiError (400) naming the field.
 jobs::JobSpec parse_job_request(std::string_view body, int default_dpi);
+
+// One tile's separations must fit the heads' protocol and memory (4 bytes a pixel, 1 GiB):
+// throws ApiError (400, field dpi) when a tile of the spec's size and dpi does not.
+void check_tile_fits(const jobs::JobSpec& spec);
 
 // "300x300" -> {300, 300} in millimetres; throws ApiError naming `field`.
 std::pair<double, double> parse_tile_mm(std::string_view text, const std::string& field);

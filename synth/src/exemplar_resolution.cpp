@@ -1,0 +1,186 @@
+// Where image files record their resolution: PNG's pHYs chunk, JPEG's JFIF APP0 segment or the
+// Exif APP1 segment's first image directory, TIFF's XResolution and ResolutionUnit tags.
+
+#include <tiffio.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <string>
+#include <vector>
+
+#include "tilejet/synth/exemplar.hpp"
+
+namespace tilejet::synth {
+
+namespace {
+
+constexpr double kMmPerInch = 25.4;
+// Real scans and photos: 10 to 10 000 pixels per inch (a 0.25 mm grain at 10 000 ppi is 100 px).
+constexpr double kMinDpi = 1, kMaxDpi = 100000;
+
+[[noreturn]] void damaged(const std::filesystem::path& path, const std::string& why) {
+    throw SynthError("exemplar '" + path.string() + "': its resolution record is damaged (" + why +
+                     "); give the resolution with --exemplar-dpi");
+}
+
+// One resolution from a horizontal and a vertical one (in pixels per inch).
+std::optional<double> square(double x, double y, const std::filesystem::path& path) {
+    if (!std::isfinite(x) || !std::isfinite(y) || x < kMinDpi || y < kMinDpi || x > kMaxDpi ||
+        y > kMaxDpi)
+        damaged(path, "resolution " + std::to_string(x) + " x " + std::to_string(y) +
+                          " ppi is out of range");
+    if (std::abs(x - y) > 0.01 * std::max(x, y))
+        throw SynthError("exemplar '" + path.string() + "' has pixels that are not square (" +
+                         std::to_string(x) + " x " + std::to_string(y) +
+                         " ppi): resample it to square pixels first");
+    return (x + y) / 2;
+}
+
+uint32_t be32(const uint8_t* p) {
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+std::optional<double> from_png(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+    for (size_t at = 8; at + 12 <= f.size();) {
+        const uint32_t length = be32(&f[at]);
+        if (length > f.size() - at - 12) break;  // truncated: OpenCV reports the pixels' damage
+        const char* type = reinterpret_cast<const char*>(&f[at + 4]);
+        if (std::memcmp(type, "pHYs", 4) == 0) {
+            if (length != 9) damaged(path, "pHYs chunk of " + std::to_string(length) + " bytes");
+            const uint8_t* d = &f[at + 8];
+            if (d[8] == 0) return std::nullopt;  // an aspect ratio only
+            if (d[8] != 1) damaged(path, "pHYs unit " + std::to_string(d[8]));
+            // Pixels per metre, whole: 300 dpi is stored as 11811 and reads 299.9994. A
+            // hundredth of a dpi is far below what the metre's rounding can say.
+            auto per_inch = [](uint32_t ppm) { return std::round(ppm * kMmPerInch / 10) / 100; };
+            return square(per_inch(be32(d)), per_inch(be32(d + 4)), path);
+        }
+        if (std::memcmp(type, "IDAT", 4) == 0) break;  // pHYs must come before the image data
+        at += 12 + length;
+    }
+    return std::nullopt;
+}
+
+// Exif: a TIFF structure after "Exif\0\0"; XResolution (282, RATIONAL) and ResolutionUnit (296,
+// SHORT: 2 inch, the default, 3 cm) in the first image directory.
+std::optional<double> from_exif(const uint8_t* d, size_t size, const std::filesystem::path& path) {
+    if (size < 8) damaged(path, "Exif header");
+    const bool little = d[0] == 'I' && d[1] == 'I';
+    if (!little && !(d[0] == 'M' && d[1] == 'M')) damaged(path, "Exif byte order");
+    auto u16 = [&](size_t at) -> uint32_t {
+        if (at + 2 > size) damaged(path, "Exif directory runs past its segment");
+        return little ? uint32_t(d[at]) | uint32_t(d[at + 1]) << 8
+                      : uint32_t(d[at]) << 8 | uint32_t(d[at + 1]);
+    };
+    auto u32 = [&](size_t at) -> uint32_t {
+        return little ? u16(at) | u16(at + 2) << 16 : u16(at) << 16 | u16(at + 2);
+    };
+    const size_t ifd = u32(4);
+    const uint32_t entries = u16(ifd);
+    std::optional<double> x, y;
+    double unit = 1;  // inches per unit
+    for (uint32_t i = 0; i < entries; ++i) {
+        const size_t e = ifd + 2 + size_t(i) * 12;
+        const uint32_t tag = u16(e), type = u16(e + 2);
+        if (tag == 282 || tag == 283) {
+            if (type != 5) damaged(path, "Exif resolution is not a rational");
+            const size_t at = u32(e + 8);
+            const double den = u32(at + 4);
+            if (den == 0) damaged(path, "Exif resolution with a zero denominator");
+            (tag == 282 ? x : y) = u32(at) / den;
+        } else if (tag == 296) {
+            const uint32_t u = u16(e + 8);
+            if (u == 1) return std::nullopt;  // no absolute unit
+            if (u != 2 && u != 3) damaged(path, "Exif resolution unit " + std::to_string(u));
+            unit = u == 3 ? 1 / 2.54 : 1;
+        }
+    }
+    if (!x) return std::nullopt;
+    return square(*x / unit, (y ? *y : *x) / unit, path);
+}
+
+std::optional<double> from_jpeg(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+    std::optional<double> exif;
+    for (size_t at = 2; at + 4 <= f.size() && f[at] == 0xFF;) {
+        const uint8_t marker = f[at + 1];
+        if (marker == 0xDA || marker == 0xD9) break;  // start of scan / end of image
+        const size_t length = size_t(f[at + 2]) << 8 | f[at + 3];
+        if (length < 2 || at + 2 + length > f.size()) break;
+        const uint8_t* d = &f[at + 4];
+        const size_t size = length - 2;
+        if (marker == 0xE0 && size >= 12 && std::memcmp(d, "JFIF\0", 5) == 0) {
+            const int unit = d[7];
+            const double x = double(d[8] << 8 | d[9]), y = double(d[10] << 8 | d[11]);
+            // Unit 0 is an aspect ratio: what JFIF writers put when they know no resolution.
+            if (unit == 1) return square(x, y, path);
+            if (unit == 2) return square(x * 2.54, y * 2.54, path);
+            if (unit != 0) damaged(path, "JFIF density unit " + std::to_string(unit));
+        }
+        if (marker == 0xE1 && size >= 6 && std::memcmp(d, "Exif\0\0", 6) == 0 && !exif)
+            exif = from_exif(d + 6, size - 6, path);
+        at += 2 + length;
+    }
+    return exif;
+}
+
+std::optional<double> from_tiff(const std::filesystem::path& path) {
+    TIFFSetWarningHandler(nullptr);
+    std::unique_ptr<TIFF, decltype(&TIFFClose)> tif(TIFFOpen(path.string().c_str(), "r"),
+                                                    TIFFClose);
+    if (!tif) return std::nullopt;
+    float x = 0, y = 0;
+    uint16_t unit = RESUNIT_INCH;
+    if (!TIFFGetField(tif.get(), TIFFTAG_XRESOLUTION, &x)) return std::nullopt;
+    if (!TIFFGetField(tif.get(), TIFFTAG_YRESOLUTION, &y)) y = x;
+    TIFFGetFieldDefaulted(tif.get(), TIFFTAG_RESOLUTIONUNIT, &unit);
+    if (unit == RESUNIT_NONE) return std::nullopt;
+    const double per_inch = unit == RESUNIT_CENTIMETER ? 2.54 : 1;
+    return square(x * per_inch, y * per_inch, path);
+}
+
+}  // namespace
+
+std::optional<double> read_exemplar_dpi(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SynthError("cannot read exemplar '" + path.string() + "'");
+    // The resolution is in the first segments; 1 MB holds them in any real file.
+    std::vector<uint8_t> f(1u << 20);
+    in.read(reinterpret_cast<char*>(f.data()), std::streamsize(f.size()));
+    f.resize(size_t(in.gcount()));
+    if (f.size() >= 4 &&
+        (std::memcmp(f.data(), "II*\0", 4) == 0 || std::memcmp(f.data(), "MM\0*", 4) == 0))
+        return from_tiff(path);
+    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
+        return from_png(f, path);
+    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return from_jpeg(f, path);
+    return std::nullopt;
+}
+
+cv::Mat resample_exemplar(const cv::Mat& rgb, double from_dpi, double to_dpi,
+                          const std::string& name) {
+    if (!(from_dpi > 0) || !(to_dpi > 0) || !std::isfinite(from_dpi) || !std::isfinite(to_dpi))
+        throw SynthError("exemplar '" + name + "': resolutions must be positive");
+    const double scale = to_dpi / from_dpi;
+    const double w = std::round(rgb.cols * scale), h = std::round(rgb.rows * scale);
+    // Checked before anything is allocated: a 300 dpi scan printed at 2400 dpi is 64 times the
+    // pixels.
+    if (w * h > double(kMaxExemplarPixels) || w < kMinExemplarSide || h < kMinExemplarSide)
+        throw SynthError("exemplar '" + name + "' at " + std::to_string(from_dpi) + " dpi is " +
+                         std::to_string(int64_t(w)) + "x" + std::to_string(int64_t(h)) + " px at " +
+                         std::to_string(to_dpi) + " dpi; texture maps take " +
+                         std::to_string(kMinExemplarSide) + " px a side up to " +
+                         std::to_string(kMaxExemplarPixels >> 20) +
+                         " Mpx: crop it, or build for a lower --dpi");
+    if (w == rgb.cols && h == rgb.rows) return rgb.clone();
+    cv::Mat out;
+    // Area averaging when shrinking (no aliasing of fine grain), Lanczos when enlarging.
+    cv::resize(rgb, out, cv::Size(int(w), int(h)), 0, 0,
+               scale < 1 ? cv::INTER_AREA : cv::INTER_LANCZOS4);
+    return out;
+}
+
+}  // namespace tilejet::synth
