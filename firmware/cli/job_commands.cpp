@@ -271,7 +271,7 @@ void add_job_commands(CLI::App& app) {
         ->required()
         ->check(CLI::Range(std::int64_t(1), std::int64_t(10'000'000)));
     submit->add_option("--tile-mm", s->tile_mm, "tile size WxH in mm")->required();
-    submit->add_option("--dpi", s->dpi, "resolution (default: [render] dpi)");
+    submit->add_option("--dpi", s->dpi, "resolution; must be the design's (default: the design's)");
     submit->add_option("--profile", s->profile, "CMYK output profile (default: [colour])");
     submit->add_option("--layout", s->layout, "scatter (default) or wall")
         ->check(CLI::IsMember({"scatter", "wall"}));
