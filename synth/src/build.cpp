@@ -10,6 +10,7 @@
 
 #include "candidate_patch.hpp"
 #include "cell_set.hpp"
+#include "grain.hpp"
 #include "lab.hpp"
 #include "lattice_alignment.hpp"
 #include "mix64.hpp"
@@ -30,7 +31,6 @@ namespace {
 
 using namespace detail;
 
-constexpr int kDefaultCellSize = 128;
 constexpr int kCandidatesPerPatch = 40;
 constexpr int kDefaultPatches = 600;
 constexpr int kDefaultPatchesPerSetImage = 32;
@@ -250,9 +250,11 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     check_params(params, input);
     const int threads = params.threads > 0 ? params.threads
                                            : int(std::max(1u, std::thread::hardware_concurrency()));
+    // Cells sized to the stone: three of its largest structures across (grain.hpp).
+    const double grain = params.cell_size ? 0 : grain_size(input);
     const int square = params.cell_size
                            ? params.cell_size
-                           : std::min(kDefaultCellSize, std::min(input.cols, input.rows));
+                           : std::min(cell_side_for_grain(grain), std::min(input.cols, input.rows));
     const int corner_colours = params.corner_colours;
     const double active_per_cell = params.active_per_cell > 0
                                        ? params.active_per_cell
@@ -294,7 +296,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     map.cell_width = cell_size.width;
     map.cell_height = cell_size.height;
     map.build = {params.seed, exemplar.cols,   exemplar.rows, patches,
-                 candidates,  active_per_cell, params.dpi,    params.exemplar_dpi};
+                 candidates,  active_per_cell, params.dpi,    params.exemplar_dpi, grain};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,

@@ -39,7 +39,7 @@ constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30, kMaxRawTotal = uint64_t(1)
 // inflate to 256 MiB each, with valid checksums and id, cost every load 2 GB).
 constexpr std::array<std::string_view, 10> kKnownTags = {"META", "CSET", "PHYS", "SRCE", "CELL",
                                                          "PATA", "PATB", "OVLA", "OVLB", "IDNT"};
-// PHYS: print and exemplar resolutions, pixels per inch.
+// PHYS: print and exemplar resolutions (pixels per inch), the grain the cell came from (px).
 constexpr double kMinDpi = 1, kMaxDpi = 100000;
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
@@ -245,6 +245,7 @@ std::vector<Section> content_sections(const TextureMap& map) {
         Writer w;
         w.f64(map.build.dpi);
         w.f64(map.build.exemplar_dpi);
+        w.f64(map.build.grain);
         out.push_back({"PHYS", 0, std::move(w.bytes)});
     }
     {
@@ -464,12 +465,15 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     if (where_is.count({"PHYS", 0})) {
         Reader r = section("PHYS", 0);
         const double dpi = r.f64("dpi"), exemplar_dpi = r.f64("exemplar dpi");
+        const double grain = r.f64("grain");
         r.done();
+        if (!(grain >= 0 && grain <= kMaxSourceSide))
+            r.fail("grain " + std::to_string(grain) + " px is out of range");
         if (!(dpi >= kMinDpi && dpi <= kMaxDpi))
             r.fail("dpi " + std::to_string(dpi) + " is out of range");
         if (!(exemplar_dpi == 0 || (exemplar_dpi >= kMinDpi && exemplar_dpi <= kMaxDpi)))
             r.fail("exemplar dpi " + std::to_string(exemplar_dpi) + " is out of range");
-        map.build.dpi = dpi, map.build.exemplar_dpi = exemplar_dpi;
+        map.build.dpi = dpi, map.build.exemplar_dpi = exemplar_dpi, map.build.grain = grain;
     }
     if (where_is.count({"CSET", 0}) || images != 1) {
         Reader r = section("CSET", 0);

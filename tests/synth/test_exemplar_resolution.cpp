@@ -268,3 +268,29 @@ TEST_CASE("map build needs the exemplar's resolution and records the design's si
     // 192 px at 360 dpi is 13.55 mm.
     CHECK_THAT(out, Catch::Contains("\"exemplar_mm\":[13.54"));
 }
+
+TEST_CASE("the default cell holds the stone's largest structures: fine grain, small cells",
+          "[exemplar][build][cell]") {
+    // Noise blurred to grains of a few pixels and to blotches of about 60 px.
+    cv::Mat noise(320, 320, CV_8UC3), fine, coarse;
+    cv::randu(noise, 0, 256);
+    cv::GaussianBlur(noise, fine, {0, 0}, 1.0);
+    cv::GaussianBlur(noise, coarse, {0, 0}, 20.0);
+    cv::normalize(coarse, coarse, 0, 255, cv::NORM_MINMAX);
+    BuildParams p;
+    p.corner_colours = 2;
+    p.patches = 8;
+    p.candidates = 32;
+    const TextureMap f = build_texture_map(fine, p), c = build_texture_map(coarse, p);
+    INFO("fine: grain " << f.build.grain << " px, cell " << f.cell_width << "; coarse: grain "
+                        << c.build.grain << " px, cell " << c.cell_width);
+    CHECK(f.build.grain > 0);
+    CHECK(c.build.grain > 4 * f.build.grain);
+    CHECK(f.cell_width < c.cell_width);
+    CHECK(f.cell_width == f.cell_height);
+    // --cell still decides when given, and says so.
+    p.cell_size = 48;
+    const TextureMap given = build_texture_map(coarse, p);
+    CHECK(given.cell_width == 48);
+    CHECK(given.build.grain == 0);
+}

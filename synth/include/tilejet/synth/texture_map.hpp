@@ -78,6 +78,9 @@ struct BuildRecord {
     // per inch) and the exemplar's own, before it was resampled to that. 0: not recorded (maps
     // built before resolutions were, and library builds that give none).
     double dpi = 0, exemplar_dpi = 0;
+    // The size of the exemplar's largest structures the default cell size came from, px; 0
+    // when --cell gave it (or not recorded).
+    double grain = 0;
 };
 
 struct TextureMap {

@@ -1,0 +1,63 @@
+#include "grain.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace tilejet::synth::detail {
+
+namespace {
+constexpr int kDirections = 64;
+constexpr double kGone = 0.1;  // correlation below this: no longer the same structure
+constexpr double kGrainsPerCell = 3;
+constexpr int kMinCell = 128, kMaxCell = 256, kCellStep = 32;
+}  // namespace
+
+int cell_side_for_grain(double grain) {
+    const int side = int(std::lround(kGrainsPerCell * grain / kCellStep)) * kCellStep;
+    return std::clamp(side, kMinCell, kMaxCell);
+}
+
+double grain_size(const cv::Mat& rgb) {
+    CV_Assert(rgb.type() == CV_8UC3);
+    cv::Mat grey;
+    cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+    grey.convertTo(grey, CV_64F);
+    const int w = grey.cols, h = grey.rows;
+    const double reach = std::min(w, h) / 3.0;
+    cv::Scalar mean, sd;
+    cv::meanStdDev(grey, mean, sd);
+    if (sd[0] < 1e-6) return reach;  // flat: nothing to size
+    grey -= mean[0];
+    // Autocorrelation of all displacements by FFT, zero-padded so it does not wrap, each
+    // divided by its overlap and the variance.
+    const cv::Size size(cv::getOptimalDFTSize(2 * w), cv::getOptimalDFTSize(2 * h));
+    cv::Mat padded(size, CV_64F, cv::Scalar(0)), spectrum, correlation;
+    grey.copyTo(padded(cv::Rect(0, 0, w, h)));
+    cv::dft(padded, spectrum);
+    cv::mulSpectrums(spectrum, spectrum, spectrum, 0, true);
+    cv::dft(spectrum, correlation, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+    const double variance = sd[0] * sd[0];
+    auto at = [&](int dx, int dy) {
+        const double overlap = double(w - std::abs(dx)) * (h - std::abs(dy));
+        return correlation.at<double>((dy + size.height) % size.height,
+                                      (dx + size.width) % size.width) /
+               (overlap * variance);
+    };
+    double previous = 1;
+    for (int r = 1; r <= int(reach); ++r) {
+        double sum = 0;
+        for (int k = 0; k < kDirections; ++k) {
+            const double a = std::numbers::pi * k / kDirections;  // half the circle: symmetric
+            sum += at(int(std::lround(r * std::cos(a))), int(std::lround(r * std::sin(a))));
+        }
+        const double value = sum / kDirections;
+        if (value < kGone) return r - 1 + (previous - kGone) / std::max(1e-9, previous - value);
+        previous = value;
+    }
+    return reach;
+}
+
+}  // namespace tilejet::synth::detail
