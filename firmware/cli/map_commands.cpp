@@ -123,6 +123,13 @@ void run_info(const std::string& path) {
         j["exemplar_dpi"] = map.build.exemplar_dpi;
         j["exemplar_mm"] = {map.build.exemplar_width / map.build.dpi * 25.4,
                             map.build.exemplar_height / map.build.dpi * 25.4};
+        // Why the cell is the size it is, in a word.
+        char why[64];
+        if (map.build.grain > 0)
+            std::snprintf(why, sizeof why, "grain %.1f px", map.build.grain);
+        else
+            std::snprintf(why, sizeof why, "--cell");
+        j["cell_from"] = why;
     } else {
         j["dpi"] = nullptr;
     }

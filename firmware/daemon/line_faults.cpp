@@ -27,9 +27,9 @@ nlohmann::json line_faults(const LineSnapshot& s) {
             "when the PLC reports ready.",
             "stop");
     else if (s.counter_fault)
-        add("plc_counter", "PLC tile counter cannot be trusted: " + s.reason,
+        add("plc_counter", "PLC readings cannot be trusted: " + s.reason,
             "The conveyor is stopped and the heads hold their tiles. Check the PLC (did it "
-            "restart?), then press Acknowledge: the controller asks the heads what they hold "
+            "restart? is its speed sensor sound?), then press Acknowledge: the controller asks the heads what they hold "
             "and goes on without printing a tile twice.",
             "stop");
     else if (s.status == LineStatus::faulted && s.link_up)

@@ -151,7 +151,7 @@ void PrintLoop::handle_commands() {
                 break;
             case Command::acknowledge:
                 if (counter_fault_) {
-                    log_line("operator: PLC tile counter fault acknowledged");
+                    log_line("operator: PLC reading fault acknowledged");
                     counter_fault_.reset();
                     counter_known_ = false;  // counted from the next reading on
                 }
@@ -194,6 +194,11 @@ bool PrintLoop::poll_line() {
         link_up_ = true;
         log_line("PLC link up (tile counter " + std::to_string(line_state_.tile_counter) + ")");
     }
+    if (!counter_fault_)
+        if (const auto why = implausible_speed()) {
+            on_counter_fault(*why);
+            return true;
+        }
     if (counter_fault_) {
         // Nothing is counted until the operator acknowledges; then counting starts afresh.
     } else if (!counter_known_) {
@@ -243,6 +248,17 @@ std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived
                    std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count()) +
                " ms, at most " + std::to_string(std::uint64_t(possible)) + " can have passed";
     return std::nullopt;
+}
+
+std::optional<std::string> PrintLoop::implausible_speed() const {
+    // Half again the fastest speed the daemon ever asks for, and some slack for a conveyor that
+    // overshoots when it starts; the PLC's own setpoint is a reading too, so it does not count.
+    const double asked = std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    const double limit = 1.5 * asked + 50;
+    if (line_state_.speed_mm_s <= limit) return std::nullopt;
+    return "PLC speed reading " + std::to_string(line_state_.speed_mm_s) +
+           " mm/s is beyond anything the line was asked for (at most " +
+           std::to_string(int(asked)) + " mm/s)";
 }
 
 void PrintLoop::on_counter_fault(const std::string& why) {

@@ -55,6 +55,8 @@ class PrintLoop {
     // Why `arrived` tiles since the last poll, `elapsed` ago, cannot be true, or nothing.
     std::optional<std::string> implausible_arrivals(std::uint32_t arrived,
                                                     Clock::duration elapsed) const;
+    // A measured speed beyond anything the line was asked for: the sensor or the PLC lies.
+    std::optional<std::string> implausible_speed() const;
     void on_counter_fault(const std::string& why);
     void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
     void on_estop(std::chrono::nanoseconds at);

@@ -330,21 +330,26 @@ TEST_CASE("SIGTERM stops the daemon even when the PLC cannot be reached", "[daem
     CHECK(daemon.log().find("stopped") != std::string::npos);
 }
 
-// A PLC that restarts counts tiles from 0 again; one that lies jumps ahead. Before, the
-// daemon took the difference as 4 billion arrivals and walked them one by one: the status
-// froze, the conveyor kept running, stop and SIGTERM went unheard.
+// A PLC that restarts counts tiles from 0 again; one that lies jumps ahead, or reads a speed
+// the line was never asked for. Before, the daemon took a counter going back as 4 billion
+// arrivals and walked them one by one: the status froze, the conveyor kept running, stop and
+// SIGTERM went unheard.
 TEST_CASE(
-    "a tile counter that goes back or jumps ahead stops the line until acknowledged, "
-    "and the job still prints every tile once",
+    "a tile counter that goes back or jumps ahead, or a speed reading out of range, stops the "
+    "line until acknowledged, and the job still prints every tile once",
     "[daemon][line][counter]") {
-    const std::string glitch = GENERATE(std::string("back"), std::string("ahead"));
+    const std::string glitch =
+        GENERATE(std::string("back"), std::string("ahead"), std::string("speed"));
     test::LinesimProcess line(line_options());
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
     const int tiles = 30;
     const auto id = submit_until_printing(daemon, tiles);
     const auto counter = line.status()["tile_counter"].get<std::uint32_t>();
-    line.control("counter " + std::to_string(glitch == "back" ? 0u : counter + 1000u));
+    if (glitch == "speed")
+        line.control("speed-reading 60000");  // the line runs at 1000 mm/s (line_options)
+    else
+        line.control("counter " + std::to_string(glitch == "back" ? 0u : counter + 1000u));
     json status;
     REQUIRE(test::eventually(
         [&] {
@@ -354,8 +359,8 @@ TEST_CASE(
         3s));
     INFO(status.dump());
     CHECK(status["state"] == "faulted");
-    CHECK(status["reason"].get<std::string>().find(glitch == "back" ? "went back" : "jumped") !=
-          std::string::npos);
+    const char* why = glitch == "back" ? "went back" : glitch == "ahead" ? "jumped" : "speed";
+    CHECK(status["reason"].get<std::string>().find(why) != std::string::npos);
     // Stopped and held: nothing moves or prints until the operator acknowledges.
     REQUIRE(test::eventually([&] { return line.status()["running"] == false; }, 2s));
     CHECK(line.status()["print_enable"] == false);
@@ -364,10 +369,11 @@ TEST_CASE(
     CHECK(line.status()["running"] == false);
     CHECK(daemon.job(id)["printed"] == printed);
     CHECK(status["faults"].dump().find("plc_counter") != std::string::npos);
+    if (glitch == "speed") line.control("speed-reading off");  // the sensor is mended
     daemon.request("POST", "/api/line/acknowledge", "");
     wait_done(daemon, id, 30s);
     check_print_log(line, id, tiles, 0);
-    CHECK(daemon.log().find("PLC tile counter fault acknowledged") != std::string::npos);
+    CHECK(daemon.log().find("PLC reading fault acknowledged") != std::string::npos);
 }
 
 TEST_CASE("SIGTERM ends the daemon while a counter fault holds the line", "[daemon][line][term]") {

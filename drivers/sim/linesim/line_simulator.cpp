@@ -65,7 +65,8 @@ void LineSimulator::refresh_inputs() {
     modbus_->set("ready", ready());
     modbus_->set("running", running_);
     modbus_->set("fault_code", fault_);
-    modbus_->set("speed_actual", std::uint32_t(conveyor_.speed()));
+    modbus_->set("speed_actual",
+                 std::uint32_t(speed_reading_ ? *speed_reading_ : conveyor_.speed()));
     modbus_->set("tile_counter", tile_counter_);
     modbus_->set("estop", estop_);
 }
@@ -156,6 +157,13 @@ std::string LineSimulator::control(const std::string& request, ns now) {
             const unsigned long value = std::stoul(arg);
             if (value > UINT32_MAX) return error("counter takes 0..4294967295");
             tile_counter_ = std::uint32_t(value);
+        } else if (verb == "speed-reading" && arg == "off") {
+            speed_reading_.reset();
+        } else if (verb == "speed-reading" && !arg.empty()) {
+            // The speed register reads this whatever the conveyor does.
+            const unsigned long value = std::stoul(arg);
+            if (value > UINT16_MAX) return error("speed-reading takes 0..65535 or off");
+            speed_reading_ = std::uint16_t(value);
         } else if (verb == "heads-reset") {
             heads_->reset_buffer();
         } else if (verb == "stop-conveyor") {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include <atomic>
 #include <memory>
 #include <string>
@@ -48,6 +50,8 @@ class LineSimulator {
     std::uint16_t fault_ = 0;
     bool running_ = false;
     std::uint32_t tile_counter_ = 0;
+    // A speed sensor that lies: reported instead of the conveyor's speed ("speed-reading").
+    std::optional<std::uint16_t> speed_reading_;
 };
 
 }  // namespace tilejet::linesim
