@@ -295,8 +295,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     TextureMap map;
     map.cell_width = cell_size.width;
     map.cell_height = cell_size.height;
-    map.build = {params.seed, exemplar.cols,   exemplar.rows, patches,
-                 candidates,  active_per_cell, params.dpi,    params.exemplar_dpi, grain};
+    map.build = {params.seed,     exemplar.cols, exemplar.rows,       patches, candidates,
+                 active_per_cell, params.dpi,    params.exemplar_dpi, grain};
 
     const cv::Mat exemplar_lab = to_lab(exemplar);
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,

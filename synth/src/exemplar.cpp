@@ -38,6 +38,13 @@ cv::Mat load_exemplar(const std::filesystem::path& path) {
         if (probe.peek() == std::ifstream::traits_type::eof())
             throw SynthError("exemplar '" + name + "' is an empty file");
     }
+    if (const auto header = read_image_size(path))
+        if (int64_t(header->width) * header->height > kMaxExemplarPixels)
+            throw SynthError("exemplar '" + name + "' is " + std::to_string(header->width) + "x" +
+                             std::to_string(header->height) +
+                             " px; texture maps take exemplars up to " +
+                             std::to_string(kMaxExemplarPixels >> 20) +
+                             " Mpx (e.g. 4096x4096): crop or scale it first");
     // IMREAD_COLOR turns grey and 16-bit images into 8-bit three-channel ones and drops alpha.
     cv::Mat bgr;
     try {

@@ -142,18 +142,67 @@ std::optional<double> from_tiff(const std::filesystem::path& path) {
     return square(x * per_inch, y * per_inch, path);
 }
 
-}  // namespace
+// Width and height as a PNG's IHDR, a JPEG's start-of-frame or a TIFF's tags give them.
+std::optional<cv::Size> png_size(const std::vector<uint8_t>& f) {
+    if (f.size() < 24 || std::memcmp(&f[12], "IHDR", 4) != 0) return std::nullopt;
+    return cv::Size(int(std::min<uint32_t>(be32(&f[16]), INT32_MAX)),
+                    int(std::min<uint32_t>(be32(&f[20]), INT32_MAX)));
+}
 
-std::optional<double> read_exemplar_dpi(const std::filesystem::path& path) {
+std::optional<cv::Size> jpeg_size(const std::vector<uint8_t>& f) {
+    for (size_t at = 2; at + 4 <= f.size() && f[at] == 0xFF;) {
+        const uint8_t marker = f[at + 1];
+        if (marker == 0xDA || marker == 0xD9) break;
+        const size_t length = size_t(f[at + 2]) << 8 | f[at + 3];
+        if (length < 2 || at + 2 + length > f.size()) break;
+        // SOF0..SOF15 but DHT (C4), JPG (C8) and DAC (CC): precision, height, width.
+        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
+            marker != 0xCC && length >= 7)
+            return cv::Size(int(f[at + 7]) << 8 | f[at + 8], int(f[at + 5]) << 8 | f[at + 6]);
+        at += 2 + length;
+    }
+    return std::nullopt;
+}
+
+std::optional<cv::Size> tiff_size(const std::filesystem::path& path) {
+    TIFFSetWarningHandler(nullptr);
+    std::unique_ptr<TIFF, decltype(&TIFFClose)> tif(TIFFOpen(path.string().c_str(), "r"),
+                                                    TIFFClose);
+    uint32_t w = 0, h = 0;
+    if (!tif || !TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &w) ||
+        !TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &h))
+        return std::nullopt;
+    return cv::Size(int(std::min<uint32_t>(w, INT32_MAX)), int(std::min<uint32_t>(h, INT32_MAX)));
+}
+
+// The first megabyte of a file: where every format keeps its size and resolution.
+std::vector<uint8_t> file_head(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SynthError("cannot read exemplar '" + path.string() + "'");
-    // The resolution is in the first segments; 1 MB holds them in any real file.
     std::vector<uint8_t> f(1u << 20);
     in.read(reinterpret_cast<char*>(f.data()), std::streamsize(f.size()));
     f.resize(size_t(in.gcount()));
-    if (f.size() >= 4 &&
-        (std::memcmp(f.data(), "II*\0", 4) == 0 || std::memcmp(f.data(), "MM\0*", 4) == 0))
-        return from_tiff(path);
+    return f;
+}
+
+bool is_tiff(const std::vector<uint8_t>& f) {
+    return f.size() >= 4 &&
+           (std::memcmp(f.data(), "II*\0", 4) == 0 || std::memcmp(f.data(), "MM\0*", 4) == 0);
+}
+
+}  // namespace
+
+std::optional<cv::Size> read_image_size(const std::filesystem::path& path) {
+    const std::vector<uint8_t> f = file_head(path);
+    if (is_tiff(f)) return tiff_size(path);
+    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return png_size(f);
+    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return jpeg_size(f);
+    return std::nullopt;
+}
+
+std::optional<double> read_exemplar_dpi(const std::filesystem::path& path) {
+    const std::vector<uint8_t> f = file_head(path);
+    if (is_tiff(f)) return from_tiff(path);
     if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
         return from_png(f, path);
     if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return from_jpeg(f, path);

@@ -12,7 +12,7 @@ namespace {
 constexpr int kDirections = 64;
 constexpr double kGone = 0.1;  // correlation below this: no longer the same structure
 constexpr double kGrainsPerCell = 3;
-constexpr int kMinCell = 128, kMaxCell = 256, kCellStep = 32;
+constexpr int kMinCell = 128, kMaxCell = 192, kCellStep = 32;
 }  // namespace
 
 int cell_side_for_grain(double grain) {

@@ -12,11 +12,13 @@ namespace tilejet::synth::detail {
 double grain_size(const cv::Mat& rgb);
 
 // The default cell side for an exemplar whose structures are `grain` px: three of them, so a
-// cell holds whole veins, rounded to 32 px, from 128 to 256 px. Measured on the corpus (maps
+// cell holds whole veins, rounded to 32 px, from 128 to 192 px. Measured on the corpus (maps
 // with defaults, tilejet eval): marble's cells of 192 px brought its texture energy from 1.28
 // to 1.14 times quilting's, wood's of 160 from 1.03 to 0.92, slate's of 160 from 1.44 to 1.30;
 // but cells of 64 px for the fine designs (granite, gravel, terrazzo, setts: three grains are
 // 20 to 40 px) made it 1.3 to 1.5 times worse (a seam every few grains), so 128 is the least.
+// Cells of 256 px (the demo stone enlarged to 512 px) took 69 s to build on 2 cores, beyond the
+// 60 s a 512 px exemplar may take; 192 is the most until cell sets build faster.
 int cell_side_for_grain(double grain);
 
 }  // namespace tilejet::synth::detail

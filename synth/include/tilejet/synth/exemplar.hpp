@@ -15,7 +15,8 @@ inline constexpr int kMinExemplarSide = 16;
 inline constexpr int64_t kMaxExemplarPixels = int64_t(16) << 20;
 
 // Reads a PNG, JPEG or TIFF exemplar (8 or 16 bit, grey, RGB or with alpha) as 8-bit RGB.
-// Throws SynthError naming the file when it cannot be read, decoded, or is out of limits.
+// Throws SynthError naming the file when it cannot be read, decoded, or is out of limits; an
+// image larger than the limits is refused from its header, before its pixels are allocated.
 cv::Mat load_exemplar(const std::filesystem::path& path);
 
 // The exemplar's resolution in pixels per inch as its file records it: PNG pHYs, JPEG JFIF
@@ -23,6 +24,10 @@ cv::Mat load_exemplar(const std::filesystem::path& path);
 // none (or only an aspect ratio). Throws SynthError naming the file when the record is damaged
 // or the pixels are not square.
 std::optional<double> read_exemplar_dpi(const std::filesystem::path& path);
+
+// The image's width and height as its header gives them (PNG IHDR, JPEG start of frame, TIFF
+// tags), read before anything is decoded; nothing for other files.
+std::optional<cv::Size> read_image_size(const std::filesystem::path& path);
 
 // `rgb` (CV_8UC3) scanned at `from_dpi`, resampled for printing at `to_dpi`: area averaging
 // when it shrinks, Lanczos when it grows. Throws SynthError naming `name`, before allocating,
