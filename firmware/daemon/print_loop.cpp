@@ -170,6 +170,7 @@ void PrintLoop::handle_gpio_events(std::chrono::milliseconds wait) {
     auto event = gpio_->wait_event(wait);
     while (event) {
         if (event->input == GpioInput::estop && event->level) on_estop(event->timestamp);
+        if (event->input == GpioInput::photo_eye) on_photo_eye(event->level, event->timestamp);
         event = gpio_->wait_event(0ms);
     }
 }
@@ -205,6 +206,7 @@ bool PrintLoop::poll_line() {
         counter_known_ = true;
         counter_ = line_state_.tile_counter;
         earliest_next_ = start;
+        eye_lead_ = 0;  // the eye and the counter start even
     } else if (line_state_.tile_counter != counter_) {
         const std::uint32_t arrived = line_state_.tile_counter - counter_;  // wraps at 2^32
         if (const auto why = implausible_arrivals(arrived, start - prev_poll_start_)) {
@@ -223,7 +225,14 @@ bool PrintLoop::poll_line() {
         }
         // The last of them came after the previous poll began; the next one is a pitch later.
         earliest_next_ = prev_poll_start_ + arrived * pitch_time();
+        // A tile already between the eye and the heads when counting began was never seen.
+        eye_lead_ = std::max<std::int64_t>(0, eye_lead_ - std::int64_t(arrived));
     }
+    if (!counter_fault_ && counter_known_)
+        if (const auto why = counter_stuck()) {
+            on_counter_fault(*why);
+            return true;
+        }
     prev_poll_start_ = start;
     enabled_at_poll_ = enabled_at_read;
     if (!line_state_.running) run_commanded_ = false;
@@ -248,6 +257,33 @@ std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived
                    std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count()) +
                " ms, at most " + std::to_string(std::uint64_t(possible)) + " can have passed";
     return std::nullopt;
+}
+
+void PrintLoop::on_photo_eye(bool level, std::chrono::nanoseconds at) {
+    if (level) {
+        eye_on_since_ = at;
+        return;
+    }
+    if (!eye_on_since_) return;
+    const double fastest = 1.5 * std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    const double shortest_s = 0.5 * config_.drivers.line.tile_length_mm / fastest;
+    if (std::chrono::duration<double>(at - *eye_on_since_).count() >= shortest_s) ++eye_lead_;
+    eye_on_since_.reset();
+}
+
+std::optional<std::string> PrintLoop::counter_stuck() const {
+    // The tiles that fit between the eye and the heads, one more for the tile at each, and two
+    // for the moments between the eye's edge and the counter's poll.
+    const auto& line = config_.drivers.line;
+    const std::int64_t on_the_way =
+        std::int64_t(std::ceil(std::max(0.0, line.heads_mm - line.photo_eye_mm) /
+                               std::max(1.0, line.tile_pitch_mm))) +
+        1;
+    const std::int64_t allowed = on_the_way + 2;
+    if (eye_lead_ <= allowed) return std::nullopt;
+    return "PLC tile counter stuck at " + std::to_string(counter_) + ": the photo-eye saw " +
+           std::to_string(eye_lead_) + " tiles pass that it did not count (at most " +
+           std::to_string(allowed) + " can be on their way to the heads)";
 }
 
 std::optional<std::string> PrintLoop::implausible_speed() const {

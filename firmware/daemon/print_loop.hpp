@@ -58,6 +58,10 @@ class PrintLoop {
     // A measured speed beyond anything the line was asked for: the sensor or the PLC lies.
     std::optional<std::string> implausible_speed() const;
     void on_counter_fault(const std::string& why);
+    // The photo-eye's edges: a pulse as long as a tile takes to pass, at half the fastest speed
+    // and more, is a tile (shorter ones are glitches).
+    void on_photo_eye(bool level, std::chrono::nanoseconds at);
+    std::optional<std::string> counter_stuck() const;
     void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
     void on_estop(std::chrono::nanoseconds at);
     void on_link_lost(const std::string& why);
@@ -110,6 +114,10 @@ class PrintLoop {
     // Set when the tile counter went back or jumped further than tiles can travel: the line
     // stays stopped until the operator acknowledges.
     std::optional<std::string> counter_fault_;
+    // Tiles the photo-eye saw pass that the PLC's counter has not counted yet: a few are on
+    // their way from the eye to the heads; more, and the counter is stuck.
+    std::int64_t eye_lead_ = 0;
+    std::optional<std::chrono::nanoseconds> eye_on_since_;  // the eye's rising edge
     Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
     Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
     bool run_commanded_ = false;

@@ -338,8 +338,8 @@ TEST_CASE(
     "a tile counter that goes back or jumps ahead, or a speed reading out of range, stops the "
     "line until acknowledged, and the job still prints every tile once",
     "[daemon][line][counter]") {
-    const std::string glitch =
-        GENERATE(std::string("back"), std::string("ahead"), std::string("speed"));
+    const std::string glitch = GENERATE(std::string("back"), std::string("ahead"),
+                                        std::string("speed"), std::string("stuck"));
     test::LinesimProcess line(line_options());
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
@@ -348,18 +348,24 @@ TEST_CASE(
     const auto counter = line.status()["tile_counter"].get<std::uint32_t>();
     if (glitch == "speed")
         line.control("speed-reading 60000");  // the line runs at 1000 mm/s (line_options)
+    else if (glitch == "stuck")
+        line.control("counter-stuck on");  // tiles pass the eye and the heads uncounted
     else
         line.control("counter " + std::to_string(glitch == "back" ? 0u : counter + 1000u));
     json status;
+    // A stuck counter shows once more tiles passed the eye than can be on their way.
     REQUIRE(test::eventually(
         [&] {
             status = daemon.request("GET", "/api/status").second;
             return status["counter_fault"] == true;
         },
-        3s));
+        glitch == "stuck" ? 10s : 3s));
     INFO(status.dump());
     CHECK(status["state"] == "faulted");
-    const char* why = glitch == "back" ? "went back" : glitch == "ahead" ? "jumped" : "speed";
+    const char* why = glitch == "back"    ? "went back"
+                      : glitch == "ahead" ? "jumped"
+                      : glitch == "speed" ? "speed"
+                                          : "stuck";
     CHECK(status["reason"].get<std::string>().find(why) != std::string::npos);
     // Stopped and held: nothing moves or prints until the operator acknowledges.
     REQUIRE(test::eventually([&] { return line.status()["running"] == false; }, 2s));
@@ -370,6 +376,7 @@ TEST_CASE(
     CHECK(daemon.job(id)["printed"] == printed);
     CHECK(status["faults"].dump().find("plc_counter") != std::string::npos);
     if (glitch == "speed") line.control("speed-reading off");  // the sensor is mended
+    if (glitch == "stuck") line.control("counter-stuck off");
     daemon.request("POST", "/api/line/acknowledge", "");
     wait_done(daemon, id, 30s);
     check_print_log(line, id, tiles, 0);

@@ -109,9 +109,10 @@ class Soak {
     }
 
     void inject_one() {
-        static const char* kinds[] = {"link-drop", "reply-delay", "plc-fault",   "e-stop",
-                                      "glitch",    "daemon-kill", "plc-restart", "counter-jump"};
-        const std::string kind = kinds[between(0, 7)];
+        static const char* kinds[] = {"link-drop",     "reply-delay", "plc-fault",   "e-stop",
+                                      "glitch",        "daemon-kill", "plc-restart", "counter-jump",
+                                      "counter-stuck", "speed-lie"};
+        const std::string kind = kinds[between(0, 9)];
         ++injected_[kind];
         if (kind == "link-drop") {
             const double seconds = between(2, 20) / 10.0;
@@ -139,6 +140,13 @@ class Soak {
                           std::to_string(kind == "plc-restart"
                                              ? 0u
                                              : counter + std::uint32_t(between(50, 5000))));
+            acknowledge_counter_fault();
+        } else if (kind == "counter-stuck" || kind == "speed-lie") {
+            // A counter that stops counting while tiles pass (the daemon sees it by the
+            // photo-eye, when the line runs long enough), or a speed sensor that lies.
+            line_.control(kind == "counter-stuck" ? "counter-stuck on" : "speed-reading 60000");
+            pause(between(500, 4000));
+            line_.control(kind == "counter-stuck" ? "counter-stuck off" : "speed-reading off");
             acknowledge_counter_fault();
         } else if (kind == "glitch") {
             line_.control("glitch " + std::to_string(between(50, 1500)));

@@ -115,7 +115,7 @@ void LineSimulator::on_conveyor(const ConveyorEvent& e) {
         case ConveyorEvent::at_heads:
             heads_->tile_arrives(e.tile, e.time, gpio_->output(GpioOutput::print_enable),
                                  gpio_->input(GpioInput::head_ready));
-            ++tile_counter_;
+            if (!counter_stuck_) ++tile_counter_;
             break;
     }
 }
@@ -157,6 +157,8 @@ std::string LineSimulator::control(const std::string& request, ns now) {
             const unsigned long value = std::stoul(arg);
             if (value > UINT32_MAX) return error("counter takes 0..4294967295");
             tile_counter_ = std::uint32_t(value);
+        } else if (verb == "counter-stuck" && (arg == "on" || arg == "off")) {
+            counter_stuck_ = arg == "on";
         } else if (verb == "speed-reading" && arg == "off") {
             speed_reading_.reset();
         } else if (verb == "speed-reading" && !arg.empty()) {

@@ -1,9 +1,8 @@
 #pragma once
 
-#include <optional>
-
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +51,7 @@ class LineSimulator {
     std::uint32_t tile_counter_ = 0;
     // A speed sensor that lies: reported instead of the conveyor's speed ("speed-reading").
     std::optional<std::uint16_t> speed_reading_;
+    bool counter_stuck_ = false;  // the PLC counts no tile ("counter-stuck on")
 };
 
 }  // namespace tilejet::linesim
