@@ -1,8 +1,6 @@
 // Where image files record their resolution: PNG's pHYs chunk, JPEG's JFIF APP0 segment or the
 // Exif APP1 segment's first image directory, TIFF's XResolution and ResolutionUnit tags.
 
-#include <tiffio.h>
-
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -12,11 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "image_containers.hpp"
 #include "tilejet/synth/exemplar.hpp"
 
 namespace tilejet::synth {
 
 namespace {
+
+using namespace detail;
 
 constexpr double kMmPerInch = 25.4;
 // Real scans and photos: 10 to 10 000 pixels per inch (a 0.25 mm grain at 10 000 ppi is 100 px).
@@ -40,29 +41,20 @@ std::optional<double> square(double x, double y, const std::filesystem::path& pa
     return (x + y) / 2;
 }
 
-uint32_t be32(const uint8_t* p) {
-    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
-}
-
 std::optional<double> from_png(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
-    for (size_t at = 8; at + 12 <= f.size();) {
-        const uint32_t length = be32(&f[at]);
-        if (length > f.size() - at - 12) break;  // truncated: OpenCV reports the pixels' damage
-        const char* type = reinterpret_cast<const char*>(&f[at + 4]);
-        if (std::memcmp(type, "pHYs", 4) == 0) {
-            if (length != 9) damaged(path, "pHYs chunk of " + std::to_string(length) + " bytes");
-            const uint8_t* d = &f[at + 8];
-            if (d[8] == 0) return std::nullopt;  // an aspect ratio only
-            if (d[8] != 1) damaged(path, "pHYs unit " + std::to_string(d[8]));
-            // Pixels per metre, whole: 300 dpi is stored as 11811 and reads 299.9994. A
-            // hundredth of a dpi is far below what the metre's rounding can say.
-            auto per_inch = [](uint32_t ppm) { return std::round(ppm * kMmPerInch / 10) / 100; };
-            return square(per_inch(be32(d)), per_inch(be32(d + 4)), path);
-        }
-        if (std::memcmp(type, "IDAT", 4) == 0) break;  // pHYs must come before the image data
-        at += 12 + length;
-    }
-    return std::nullopt;
+    std::optional<double> dpi;
+    for_each_png_chunk(f, [&](std::string_view type, const uint8_t* d, size_t length) {
+        if (type != "pHYs") return false;
+        if (length != 9) damaged(path, "pHYs chunk of " + std::to_string(length) + " bytes");
+        if (d[8] == 0) return true;  // an aspect ratio only
+        if (d[8] != 1) damaged(path, "pHYs unit " + std::to_string(d[8]));
+        // Pixels per metre, whole: 300 dpi is stored as 11811 and reads 299.9994. A hundredth
+        // of a dpi is far below what the metre's rounding can say.
+        auto per_inch = [](uint32_t ppm) { return std::round(ppm * kMmPerInch / 10) / 100; };
+        dpi = square(per_inch(be32(d)), per_inch(be32(d + 4)), path);
+        return true;
+    });
+    return dpi;
 }
 
 // Exif: a TIFF structure after "Exif\0\0"; XResolution (282, RATIONAL) and ResolutionUnit (296,
@@ -104,33 +96,26 @@ std::optional<double> from_exif(const uint8_t* d, size_t size, const std::filesy
 }
 
 std::optional<double> from_jpeg(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
-    std::optional<double> exif;
-    for (size_t at = 2; at + 4 <= f.size() && f[at] == 0xFF;) {
-        const uint8_t marker = f[at + 1];
-        if (marker == 0xDA || marker == 0xD9) break;  // start of scan / end of image
-        const size_t length = size_t(f[at + 2]) << 8 | f[at + 3];
-        if (length < 2 || at + 2 + length > f.size()) break;
-        const uint8_t* d = &f[at + 4];
-        const size_t size = length - 2;
+    std::optional<double> jfif, exif;
+    for_each_jpeg_segment(f, [&](uint8_t marker, const uint8_t* d, size_t size) {
         if (marker == 0xE0 && size >= 12 && std::memcmp(d, "JFIF\0", 5) == 0) {
             const int unit = d[7];
             const double x = double(d[8] << 8 | d[9]), y = double(d[10] << 8 | d[11]);
             // Unit 0 is an aspect ratio: what JFIF writers put when they know no resolution.
-            if (unit == 1) return square(x, y, path);
-            if (unit == 2) return square(x * 2.54, y * 2.54, path);
-            if (unit != 0) damaged(path, "JFIF density unit " + std::to_string(unit));
+            if (unit == 1) jfif = square(x, y, path);
+            if (unit == 2) jfif = square(x * 2.54, y * 2.54, path);
+            if (unit > 2) damaged(path, "JFIF density unit " + std::to_string(unit));
+            if (jfif) return true;
         }
         if (marker == 0xE1 && size >= 6 && std::memcmp(d, "Exif\0\0", 6) == 0 && !exif)
             exif = from_exif(d + 6, size - 6, path);
-        at += 2 + length;
-    }
-    return exif;
+        return false;
+    });
+    return jfif ? jfif : exif;
 }
 
 std::optional<double> from_tiff(const std::filesystem::path& path) {
-    TIFFSetWarningHandler(nullptr);
-    std::unique_ptr<TIFF, decltype(&TIFFClose)> tif(TIFFOpen(path.string().c_str(), "r"),
-                                                    TIFFClose);
+    const TiffFile tif = open_tiff(path);
     if (!tif) return std::nullopt;
     float x = 0, y = 0;
     uint16_t unit = RESUNIT_INCH;
@@ -150,24 +135,20 @@ std::optional<cv::Size> png_size(const std::vector<uint8_t>& f) {
 }
 
 std::optional<cv::Size> jpeg_size(const std::vector<uint8_t>& f) {
-    for (size_t at = 2; at + 4 <= f.size() && f[at] == 0xFF;) {
-        const uint8_t marker = f[at + 1];
-        if (marker == 0xDA || marker == 0xD9) break;
-        const size_t length = size_t(f[at + 2]) << 8 | f[at + 3];
-        if (length < 2 || at + 2 + length > f.size()) break;
+    std::optional<cv::Size> size;
+    for_each_jpeg_segment(f, [&](uint8_t marker, const uint8_t* d, size_t length) {
         // SOF0..SOF15 but DHT (C4), JPG (C8) and DAC (CC): precision, height, width.
-        if (marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 &&
-            marker != 0xCC && length >= 7)
-            return cv::Size(int(f[at + 7]) << 8 | f[at + 8], int(f[at + 5]) << 8 | f[at + 6]);
-        at += 2 + length;
-    }
-    return std::nullopt;
+        if (marker < 0xC0 || marker > 0xCF || marker == 0xC4 || marker == 0xC8 || marker == 0xCC ||
+            length < 5)
+            return false;
+        size = cv::Size(int(d[3]) << 8 | d[4], int(d[1]) << 8 | d[2]);
+        return true;
+    });
+    return size;
 }
 
 std::optional<cv::Size> tiff_size(const std::filesystem::path& path) {
-    TIFFSetWarningHandler(nullptr);
-    std::unique_ptr<TIFF, decltype(&TIFFClose)> tif(TIFFOpen(path.string().c_str(), "r"),
-                                                    TIFFClose);
+    const TiffFile tif = open_tiff(path);
     uint32_t w = 0, h = 0;
     if (!tif || !TIFFGetField(tif.get(), TIFFTAG_IMAGEWIDTH, &w) ||
         !TIFFGetField(tif.get(), TIFFTAG_IMAGELENGTH, &h))
@@ -185,27 +166,21 @@ std::vector<uint8_t> file_head(const std::filesystem::path& path) {
     return f;
 }
 
-bool is_tiff(const std::vector<uint8_t>& f) {
-    return f.size() >= 4 &&
-           (std::memcmp(f.data(), "II*\0", 4) == 0 || std::memcmp(f.data(), "MM\0*", 4) == 0);
-}
-
 }  // namespace
 
 std::optional<cv::Size> read_image_size(const std::filesystem::path& path) {
     const std::vector<uint8_t> f = file_head(path);
     if (is_tiff(f)) return tiff_size(path);
-    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return png_size(f);
-    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return jpeg_size(f);
+    if (is_png(f)) return png_size(f);
+    if (is_jpeg(f)) return jpeg_size(f);
     return std::nullopt;
 }
 
 std::optional<double> read_exemplar_dpi(const std::filesystem::path& path) {
     const std::vector<uint8_t> f = file_head(path);
     if (is_tiff(f)) return from_tiff(path);
-    if (f.size() >= 8 && std::memcmp(f.data(), "\x89PNG\r\n\x1a\n", 8) == 0)
-        return from_png(f, path);
-    if (f.size() >= 3 && f[0] == 0xFF && f[1] == 0xD8 && f[2] == 0xFF) return from_jpeg(f, path);
+    if (is_png(f)) return from_png(f, path);
+    if (is_jpeg(f)) return from_jpeg(f, path);
     return std::nullopt;
 }
 
