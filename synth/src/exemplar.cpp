@@ -13,20 +13,29 @@
 
 namespace tilejet::synth {
 
+namespace {
+
+// The exemplar limits on a size, in memory or as a file's header gives it.
+void check_size(cv::Size size, const std::string& name) {
+    if (size.width < kMinExemplarSide || size.height < kMinExemplarSide)
+        throw SynthError("exemplar '" + name + "' is " + std::to_string(size.width) + "x" +
+                         std::to_string(size.height) + " px; a texture needs at least " +
+                         std::to_string(kMinExemplarSide) + "x" + std::to_string(kMinExemplarSide) +
+                         " px");
+    if (int64_t(size.width) * size.height > kMaxExemplarPixels)
+        throw SynthError("exemplar '" + name + "' is " + std::to_string(size.width) + "x" +
+                         std::to_string(size.height) + " px; texture maps take exemplars up to " +
+                         std::to_string(kMaxExemplarPixels >> 20) +
+                         " Mpx (e.g. 4096x4096): crop or scale it first");
+}
+
+}  // namespace
+
 void check_exemplar(const cv::Mat& rgb, const std::string& name) {
     if (rgb.empty()) throw SynthError("exemplar '" + name + "' is empty");
     if (rgb.type() != CV_8UC3)
         throw SynthError("exemplar '" + name + "' is not 8-bit RGB in memory");
-    if (rgb.cols < kMinExemplarSide || rgb.rows < kMinExemplarSide)
-        throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
-                         std::to_string(rgb.rows) + " px; a texture needs at least " +
-                         std::to_string(kMinExemplarSide) + "x" + std::to_string(kMinExemplarSide) +
-                         " px");
-    if (int64_t(rgb.cols) * rgb.rows > kMaxExemplarPixels)
-        throw SynthError("exemplar '" + name + "' is " + std::to_string(rgb.cols) + "x" +
-                         std::to_string(rgb.rows) + " px; texture maps take exemplars up to " +
-                         std::to_string(kMaxExemplarPixels >> 20) +
-                         " Mpx (e.g. 4096x4096): crop or scale it first");
+    check_size(rgb.size(), name);
 }
 
 cv::Mat load_exemplar(const std::filesystem::path& path) {
@@ -38,13 +47,10 @@ cv::Mat load_exemplar(const std::filesystem::path& path) {
         if (probe.peek() == std::ifstream::traits_type::eof())
             throw SynthError("exemplar '" + name + "' is an empty file");
     }
-    if (const auto header = read_image_size(path))
-        if (int64_t(header->width) * header->height > kMaxExemplarPixels)
-            throw SynthError("exemplar '" + name + "' is " + std::to_string(header->width) + "x" +
-                             std::to_string(header->height) +
-                             " px; texture maps take exemplars up to " +
-                             std::to_string(kMaxExemplarPixels >> 20) +
-                             " Mpx (e.g. 4096x4096): crop or scale it first");
+    // Too large is refused from the header, before the pixels are decoded (and allocated).
+    if (const auto header = read_image_size(path);
+        header && int64_t(header->width) * header->height > kMaxExemplarPixels)
+        check_size(*header, name);
     // IMREAD_COLOR turns grey and 16-bit images into 8-bit three-channel ones and drops alpha.
     cv::Mat bgr;
     try {
