@@ -239,6 +239,10 @@ bool PrintLoop::poll_line() {
     return true;
 }
 
+double PrintLoop::fastest_asked() const {
+    return std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+}
+
 std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived,
                                                            Clock::duration elapsed) const {
     const std::uint32_t before = counter_, now = line_state_.tile_counter;
@@ -247,7 +251,7 @@ std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived
                std::to_string(now) + " (PLC restart?)";
     // At most one tile a pitch at half again the fastest speed the daemon runs the line, and
     // two for the tile already under the eye when the last poll began.
-    const double fastest = 1.5 * std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    const double fastest = 1.5 * fastest_asked();
     const double pitch_s = config_.drivers.line.tile_pitch_mm / fastest;
     const double possible = std::chrono::duration<double>(elapsed).count() / pitch_s + 2;
     if (double(arrived) > possible)
@@ -265,8 +269,7 @@ void PrintLoop::on_photo_eye(bool level, std::chrono::nanoseconds at) {
         return;
     }
     if (!eye_on_since_) return;
-    const double fastest = 1.5 * std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
-    const double shortest_s = 0.5 * config_.drivers.line.tile_length_mm / fastest;
+    const double shortest_s = 0.5 * config_.drivers.line.tile_length_mm / (1.5 * fastest_asked());
     if (std::chrono::duration<double>(at - *eye_on_since_).count() >= shortest_s) ++eye_lead_;
     eye_on_since_.reset();
 }
@@ -289,7 +292,7 @@ std::optional<std::string> PrintLoop::counter_stuck() const {
 std::optional<std::string> PrintLoop::implausible_speed() const {
     // Half again the fastest speed the daemon ever asks for, and some slack for a conveyor that
     // overshoots when it starts; the PLC's own setpoint is a reading too, so it does not count.
-    const double asked = std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    const double asked = fastest_asked();
     const double limit = 1.5 * asked + 50;
     if (line_state_.speed_mm_s <= limit) return std::nullopt;
     return "PLC speed reading " + std::to_string(line_state_.speed_mm_s) +

@@ -55,6 +55,9 @@ class PrintLoop {
     // Why `arrived` tiles since the last poll, `elapsed` ago, cannot be true, or nothing.
     std::optional<std::string> implausible_arrivals(std::uint32_t arrived,
                                                     Clock::duration elapsed) const;
+    // The fastest speed the daemon asks the conveyor for (at least 1 mm/s): what the PLC's
+    // readings are judged against.
+    double fastest_asked() const;
     // A measured speed beyond anything the line was asked for: the sensor or the PLC lies.
     std::optional<std::string> implausible_speed() const;
     void on_counter_fault(const std::string& why);
