@@ -243,8 +243,7 @@ CourseScore course_pitch(const SelfCorrelation& sc, bool vertical_pitch) {
     return {};
 }
 
-// Courses in either direction, when they stand out; the peak nearest each tooth refines the
-// pitch to a fraction of a pixel.
+// Courses in either direction, when they stand out; the stronger of the two when both do.
 std::optional<Lattice> detect_courses(const SelfCorrelation& sc) {
     std::optional<Lattice> found;
     for (const bool vertical_pitch : {true, false}) {
