@@ -77,7 +77,17 @@ ApiConfig parse_api(const toml::table* t, const ConfigSource& src) {
         int(s.get_int("sign_in_failures_per_address", a.sign_in.failures_per_address, 1, 10000));
     a.sign_in.window =
         std::chrono::seconds(s.get_int("sign_in_window_s", a.sign_in.window.count(), 1, 24 * 3600));
-    a.event_streams = int(s.get_int("event_streams", a.event_streams, 1, 256));
+    auto& l = a.limits;
+    l.connections = int(s.get_int("connections", l.connections, 8, 4096));
+    l.connections_per_address =
+        int(s.get_int("connections_per_address", l.connections_per_address, 4, 4096));
+    l.header_timeout =
+        std::chrono::seconds(s.get_int("header_timeout_s", l.header_timeout.count(), 1, 300));
+    l.body_timeout =
+        std::chrono::seconds(s.get_int("body_timeout_s", l.body_timeout.count(), 1, 3600));
+    l.event_streams = int(s.get_int("event_streams", l.event_streams, 1, 1024));
+    l.event_streams_per_session =
+        int(s.get_int("event_streams_per_session", l.event_streams_per_session, 1, 64));
     // The names the API answers to besides the loopback ones: the address it listens on and
     // what the line's browsers call the controller ("controller.line.local, 10.0.0.5").
     const auto bracketed = [](const std::string& h) {

@@ -45,7 +45,7 @@ api::AccessSettings access(int streams = 3) {
                {"vera", api::Role::viewer, api::hash_password("vera-pw-123", 1000)}};
     a.sign_in.failures_per_user = 3;
     a.sign_in.failures_per_address = 100;
-    a.event_streams = streams;
+    a.limits.event_streams = streams;
     return a;
 }
 

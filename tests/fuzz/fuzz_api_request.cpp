@@ -16,8 +16,7 @@
 // raw bytes, sent on a fresh connection. With bit 2 the harness reads until one whole answer is
 // in, the server closes, or nothing comes for 10 ms; then (at once without bit 2) it half-closes,
 // and waits for the server to close, at most 200 ms in all (an /api/events stream only ends at
-// its next write). cpp-httplib 0.11 answers only the first of several requests that arrive in
-// one read (it drops what it read past that request), so one request per input is what counts.
+// its next write). One request per input is what counts: the answer read is the first one.
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>

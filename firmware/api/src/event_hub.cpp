@@ -18,8 +18,11 @@ std::string sse(const char* event, const std::string& data) {
 
 }  // namespace
 
-EventHub::EventHub(ApiBackend& backend, int max_streams)
-    : backend_(backend), max_streams_(max_streams), thread_([this] { pump(); }) {}
+EventHub::EventHub(ApiBackend& backend, int max_streams, int max_streams_per_session)
+    : backend_(backend),
+      max_streams_(max_streams),
+      max_streams_per_session_(max_streams_per_session),
+      thread_([this] { pump(); }) {}
 
 EventHub::~EventHub() {
     close();
@@ -29,16 +32,21 @@ EventHub::~EventHub() {
 EventHub::Listener::~Listener() {
     std::lock_guard lock(hub.mutex_);
     --hub.listeners_;
+    if (--hub.per_session_[session] <= 0) hub.per_session_.erase(session);
 }
 
-std::shared_ptr<EventHub::Listener> EventHub::join() {
+std::shared_ptr<EventHub::Listener> EventHub::join(const std::string& session) {
     {
         std::lock_guard lock(mutex_);
         if (closing_ || listeners_ >= max_streams_) return nullptr;
+        if (const auto it = per_session_.find(session);
+            it != per_session_.end() && it->second >= max_streams_per_session_)
+            return nullptr;
         ++listeners_;
+        ++per_session_[session];
     }
     wake_pump_.notify_all();
-    return std::make_shared<Listener>(*this);
+    return std::make_shared<Listener>(*this, session);
 }
 
 std::optional<std::string> EventHub::next(Listener& l, std::chrono::milliseconds timeout) {

@@ -38,13 +38,13 @@ bool changes_state(const std::string& method) {
     return method != "GET" && method != "HEAD" && method != "OPTIONS";
 }
 
-Role required_role(const httplib::Request& req) {
+Role required_role(const HttpRequest& req) {
     for (const Permission& p : permissions())
         if (req.method == p.method && std::regex_match(req.path, p.path)) return p.role;
     return changes_state(req.method) ? Role::engineer : Role::viewer;
 }
 
-std::optional<std::string> cookie(const httplib::Request& req, std::string_view name) {
+std::optional<std::string> cookie(const HttpRequest& req, std::string_view name) {
     const std::string header = req.get_header_value("Cookie");
     size_t pos = 0;
     while (pos < header.size()) {
@@ -62,7 +62,7 @@ std::optional<std::string> cookie(const httplib::Request& req, std::string_view 
 
 }  // namespace
 
-std::optional<std::string> session_cookie(const httplib::Request& req) {
+std::optional<std::string> session_cookie(const HttpRequest& req) {
     return cookie(req, kSessionCookie);
 }
 
@@ -104,7 +104,7 @@ std::string host_part(const std::string& authority) {
 
 }  // namespace
 
-std::optional<std::string> Gate::foreign_host(const httplib::Request& req) const {
+std::optional<std::string> Gate::foreign_host(const HttpRequest& req) const {
     const auto known = [&](const std::string& name) {
         return std::find(host_names_.begin(), host_names_.end(), lower(name)) != host_names_.end();
     };
@@ -140,37 +140,36 @@ Gate::Gate(const AccessSettings& settings)
     dummy_hash_ = hash_password(random_token(), iterations);
 }
 
-httplib::Server::HandlerResponse Gate::check(const httplib::Request& req, httplib::Response& res) {
-    using R = httplib::Server::HandlerResponse;
-    if (!req.path.starts_with("/api/")) return R::Unhandled;
+bool Gate::check(const HttpRequest& req, HttpResponse& res) {
+    if (!req.path.starts_with("/api/")) return false;
     if (const auto why = foreign_host(req)) {
         reply_error(res, 403, "host", *why);
-        return R::Handled;
+        return true;
     }
-    if (req.path == "/api/session" && req.method == "POST") return R::Unhandled;
+    if (req.path == "/api/session" && req.method == "POST") return false;
     // The event stream is no activity of the user's: an open panel alone must not keep a
     // session from going idle.
     const auto s = session(req, req.path != "/api/events");
     if (!s) {
         reply_error(res, 401, "session", "sign in first");
-        return R::Handled;
+        return true;
     }
     if (changes_state(req.method) && !same_token(req.get_header_value(kCsrfHeader), s->csrf)) {
         reply_error(res, 403, "csrf",
                     std::string("missing or wrong ") + kCsrfHeader + " header (sign in again)");
-        return R::Handled;
+        return true;
     }
     const Role needed = required_role(req);
     if (s->role < needed) {
         reply_error(res, 403, "role",
                     "a " + std::string(to_string(s->role)) + " may not do this; it needs a" +
                         (needed == Role::engineer ? "n " : " ") + std::string(to_string(needed)));
-        return R::Handled;
+        return true;
     }
-    return R::Unhandled;
+    return false;
 }
 
-Session Gate::sign_in(const httplib::Request& req) {
+Session Gate::sign_in(const HttpRequest& req) {
     // A form from another site cannot send application/json without asking first (CORS), so
     // nobody can sign a browser in under an account of theirs from their page.
     if (req.get_header_value("Content-Type").find("application/json") != 0)
@@ -196,13 +195,13 @@ Session Gate::sign_in(const httplib::Request& req) {
     return sessions_.open(it->second);
 }
 
-std::optional<Session> Gate::session(const httplib::Request& req, bool touch) {
+std::optional<Session> Gate::session(const HttpRequest& req, bool touch) {
     const auto id = session_cookie(req);
     if (!id) return std::nullopt;
     return sessions_.find(*id, touch);
 }
 
-void Gate::sign_out(const httplib::Request& req) {
+void Gate::sign_out(const HttpRequest& req) {
     if (const auto id = session_cookie(req)) sessions_.close(*id);
 }
 

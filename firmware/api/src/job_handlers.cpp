@@ -29,25 +29,24 @@ nlohmann::json job_json(const jobs::Job& job) {
             {"finished", job.finished}};
 }
 
-void add_job_routes(httplib::Server& server, ApiBackend& backend) {
-    server.Post("/api/jobs", [&backend](const httplib::Request& req, httplib::Response& res) {
+void add_job_routes(Router& router, ApiBackend& backend) {
+    router.post("/api/jobs", [&backend](const HttpRequest& req, HttpResponse& res) {
         const jobs::JobSpec spec = parse_job_request(req.body, backend.default_dpi());
         reply_json(res, 201, backend.submit(spec));
     });
-    server.Get("/api/jobs", [&backend](const httplib::Request&, httplib::Response& res) {
+    router.get("/api/jobs", [&backend](const HttpRequest&, HttpResponse& res) {
         reply_json(res, 200, backend.jobs());
     });
-    server.Get(
-        R"(/api/jobs/([^/]+))", [&backend](const httplib::Request& req, httplib::Response& res) {
-            const std::string text = req.matches[1];
-            std::int64_t id = 0;
-            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
-            if (ec != std::errc() || end != text.data() + text.size() || id <= 0)
-                throw ApiError(400, "id", "id: '" + text + "' is not a job number");
-            const auto job = backend.job(id);
-            if (!job) throw ApiError(404, "id", "no job " + text);
-            reply_json(res, 200, *job);
-        });
+    router.get(R"(/api/jobs/([^/]+))", [&backend](const HttpRequest& req, HttpResponse& res) {
+        const std::string text = req.matches[1];
+        std::int64_t id = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+        if (ec != std::errc() || end != text.data() + text.size() || id <= 0)
+            throw ApiError(400, "id", "id: '" + text + "' is not a job number");
+        const auto job = backend.job(id);
+        if (!job) throw ApiError(404, "id", "no job " + text);
+        reply_json(res, 200, *job);
+    });
 }
 
 }  // namespace tilejet::api

@@ -4,12 +4,12 @@
 
 namespace tilejet::api {
 
-void add_line_routes(httplib::Server& server, ApiBackend& backend) {
-    server.Get("/api/status", [&backend](const httplib::Request&, httplib::Response& res) {
+void add_line_routes(Router& router, ApiBackend& backend) {
+    router.get("/api/status", [&backend](const HttpRequest&, HttpResponse& res) {
         reply_json(res, 200, backend.status());
     });
-    server.Post(R"(/api/line/(pause|resume|stop|acknowledge))",
-                [&backend](const httplib::Request& req, httplib::Response& res) {
+    router.post(R"(/api/line/(pause|resume|stop|acknowledge))",
+                [&backend](const HttpRequest& req, HttpResponse& res) {
                     if (!req.body.empty() && req.body != "{}")
                         throw ApiError(400, "body", "body: this command takes no body");
                     reply_json(res, 200, backend.command(std::string(req.matches[1])));

@@ -11,7 +11,7 @@ namespace tilejet::api {
 
 namespace {
 
-int query_int(const httplib::Request& req, const char* name, int fallback, int min, int max) {
+int query_int(const HttpRequest& req, const char* name, int fallback, int min, int max) {
     if (!req.has_param(name)) return fallback;
     const std::string text = req.get_param_value(name);
     int v = 0;
@@ -31,20 +31,20 @@ std::int64_t path_number(const std::string& text, const char* field) {
     return v;
 }
 
-void reply_png(httplib::Response& res, std::string png, const char* cache) {
+void reply_png(HttpResponse& res, std::string png, const char* cache) {
     res.set_header("Cache-Control", cache);
     res.set_content(std::move(png), "image/png");
 }
 
 }  // namespace
 
-void add_panel_routes(httplib::Server& server) {
+void add_panel_routes(Router& router) {
     for (const PanelAsset& asset : panel_assets()) {
         const std::string name(asset.name);
         // Route patterns are regular expressions: the dot in a file name is escaped.
         std::string path = "/";
         if (name != "index.html") path += std::regex_replace(name, std::regex("\\."), "\\.");
-        server.Get(path, [&asset](const httplib::Request&, httplib::Response& res) {
+        router.get(path, [&asset](const HttpRequest&, HttpResponse& res) {
             // Asked for again on every load: a daemon updated in place shows its new page.
             res.set_header("Cache-Control", "no-cache");
             res.set_content(std::string(asset.body), std::string(asset.content_type));
@@ -52,44 +52,52 @@ void add_panel_routes(httplib::Server& server) {
     }
 }
 
-void add_picture_routes(httplib::Server& server, ApiBackend& backend) {
-    server.Get(R"(/api/jobs/(\d+)/tiles/(\d+)\.png)",
-               [&backend](const httplib::Request& req, httplib::Response& res) {
-                   const auto job = path_number(req.matches[1], "id");
-                   const auto index = path_number(req.matches[2], "tile");
-                   const int size = query_int(req, "size", 160, 16, 1024);
-                   // A tile is a pure function of the job and its index: it never changes.
-                   reply_png(res, backend.tile_png(job, index, size), "private, max-age=86400");
-               });
-    server.Get("/api/wall.png", [&backend](const httplib::Request& req, httplib::Response& res) {
-        const int tiles = query_int(req, "tiles", 12, 1, 64);
-        const int size = query_int(req, "size", 640, 64, 2048);
-        reply_png(res, backend.wall_png(tiles, size), "no-store");
-    });
+void add_picture_routes(Router& router, ApiBackend& backend) {
+    router
+        .get(R"(/api/jobs/(\d+)/tiles/(\d+)\.png)",
+             [&backend](const HttpRequest& req, HttpResponse& res) {
+                 const auto job = path_number(req.matches[1], "id");
+                 const auto index = path_number(req.matches[2], "tile");
+                 const int size = query_int(req, "size", 160, 16, 1024);
+                 // A tile is a pure function of the job and its index: it never changes.
+                 reply_png(res, backend.tile_png(job, index, size), "private, max-age=86400");
+             })
+        .lane = Lane::pictures;
+    router
+        .get("/api/wall.png",
+             [&backend](const HttpRequest& req, HttpResponse& res) {
+                 const int tiles = query_int(req, "tiles", 12, 1, 64);
+                 const int size = query_int(req, "size", 640, 64, 2048);
+                 reply_png(res, backend.wall_png(tiles, size), "no-store");
+             })
+        .lane = Lane::pictures;
 }
 
-void add_design_routes(httplib::Server& server, ApiBackend& backend) {
-    server.Get("/api/designs", [&backend](const httplib::Request&, httplib::Response& res) {
+void add_design_routes(Router& router, ApiBackend& backend) {
+    router.get("/api/designs", [&backend](const HttpRequest&, HttpResponse& res) {
         reply_json(res, 200, backend.designs());
     });
-    server.Get("/api/profiles", [&backend](const httplib::Request&, httplib::Response& res) {
+    router.get("/api/profiles", [&backend](const HttpRequest&, HttpResponse& res) {
         reply_json(res, 200, backend.profiles());
     });
     // Names stay inside the designs' and profiles' folders: no slashes, no leading dot.
-    server.Put(R"(/api/designs/([A-Za-z0-9][A-Za-z0-9._-]{0,99}))",
-               [&backend](const httplib::Request& req, httplib::Response& res) {
-                   reply_json(res, 201, backend.add_design(req.matches[1], req.body));
-               });
-    server.Put(R"(/api/profiles/([A-Za-z0-9][A-Za-z0-9._-]{0,99}))",
-               [&backend](const httplib::Request& req, httplib::Response& res) {
-                   reply_json(res, 201, backend.add_profile(req.matches[1], req.body));
-               });
-    server.Post("/api/config/reload",
-                [&backend](const httplib::Request& req, httplib::Response& res) {
-                    if (!req.body.empty() && req.body != "{}")
-                        throw ApiError(400, "body", "body: this command takes no body");
-                    reply_json(res, 200, backend.reload_config());
-                });
+    router
+        .put(R"(/api/designs/([A-Za-z0-9][A-Za-z0-9._-]{0,99}))",
+             [&backend](const HttpRequest& req, HttpResponse& res) {
+                 reply_json(res, 201, backend.add_design(req.matches[1], req.body));
+             })
+        .max_body = kMaxUploadBody;
+    router
+        .put(R"(/api/profiles/([A-Za-z0-9][A-Za-z0-9._-]{0,99}))",
+             [&backend](const HttpRequest& req, HttpResponse& res) {
+                 reply_json(res, 201, backend.add_profile(req.matches[1], req.body));
+             })
+        .max_body = kMaxUploadBody;
+    router.post("/api/config/reload", [&backend](const HttpRequest& req, HttpResponse& res) {
+        if (!req.body.empty() && req.body != "{}")
+            throw ApiError(400, "body", "body: this command takes no body");
+        reply_json(res, 200, backend.reload_config());
+    });
 }
 
 }  // namespace tilejet::api

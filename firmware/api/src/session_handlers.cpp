@@ -21,19 +21,21 @@ std::string cookie_header(const std::string& value, std::chrono::seconds max_age
 
 }  // namespace
 
-void add_session_routes(httplib::Server& server, Gate& gate) {
-    server.Post("/api/session", [&gate](const httplib::Request& req, httplib::Response& res) {
-        if (req.body.size() > kMaxBodyBytes) throw ApiError(400, "body", "body: too large");
-        const Session s = gate.sign_in(req);
-        res.set_header("Set-Cookie", cookie_header(s.id, gate.session_lifetime()));
-        reply_json(res, 200, session_json(s));
-    });
-    server.Get("/api/session", [&gate](const httplib::Request& req, httplib::Response& res) {
+void add_session_routes(Router& router, Gate& gate) {
+    router
+        .post("/api/session",
+              [&gate](const HttpRequest& req, HttpResponse& res) {
+                  const Session s = gate.sign_in(req);
+                  res.set_header("Set-Cookie", cookie_header(s.id, gate.session_lifetime()));
+                  reply_json(res, 200, session_json(s));
+              })
+        .lane = Lane::sign_in;
+    router.get("/api/session", [&gate](const HttpRequest& req, HttpResponse& res) {
         const auto s = gate.session(req);
         if (!s) throw ApiError(401, "session", "sign in first");
         reply_json(res, 200, session_json(*s));
     });
-    server.Delete("/api/session", [&gate](const httplib::Request& req, httplib::Response& res) {
+    router.del("/api/session", [&gate](const HttpRequest& req, HttpResponse& res) {
         gate.sign_out(req);
         res.set_header("Set-Cookie", cookie_header("", std::chrono::seconds(0)));
         reply_json(res, 200, {{"signed_out", true}});

@@ -35,7 +35,20 @@ struct SignInLimits {
     std::chrono::seconds window{60};
 };
 
-// Everything about who gets in, for ApiServer.
+// What any one client may make the HTTP server spend ([api] in the config; http_server.hpp).
+struct ServerLimits {
+    int connections = 256;             // open at once, all clients
+    int connections_per_address = 64;  // from one client address
+    // A request's line and headers must have arrived this long after the connection opened
+    // (or its previous answer went out), and its body this long after its headers.
+    std::chrono::seconds header_timeout{10};
+    std::chrono::seconds body_timeout{60};
+    // Event streams (/api/events) open at once, in all and per session.
+    int event_streams = 32;
+    int event_streams_per_session = 4;
+};
+
+// Everything about who gets in and what each may take, for ApiServer.
 struct AccessSettings {
     std::vector<User> users;
     SessionSettings sessions;
@@ -44,9 +57,7 @@ struct AccessSettings {
     // without port: anything else is refused, so that a page of another site whose name was
     // rebound to this address (DNS rebinding) cannot use the API. [api] host and host_names.
     std::vector<std::string> host_names{"localhost", "127.0.0.1", "[::1]"};
-    // Open /api/events streams each hold one server thread; past this many, new ones get 503
-    // so that the API itself always has threads left.
-    int event_streams = 8;
+    ServerLimits limits;
 };
 
 }  // namespace tilejet::api

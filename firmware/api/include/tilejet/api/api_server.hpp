@@ -5,19 +5,16 @@
 // call which is one table in gate.cpp.
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "tilejet/api/access.hpp"
 #include "tilejet/api/api_backend.hpp"
-
-namespace httplib {
-class Server;
-}
 
 namespace tilejet::api {
 
 class EventHub;
 class Gate;
+class HttpServer;
+class Router;
 
 class ApiServer {
   public:
@@ -30,14 +27,13 @@ class ApiServer {
     ~ApiServer();
     ApiServer(const ApiServer&) = delete;
     ApiServer& operator=(const ApiServer&) = delete;
-    int port() const { return port_; }
+    int port() const;
 
   private:
     std::unique_ptr<Gate> gate_;
     std::unique_ptr<EventHub> events_;
-    std::unique_ptr<httplib::Server> server_;
-    int port_ = 0;
-    std::thread thread_;
+    std::unique_ptr<Router> router_;
+    std::unique_ptr<HttpServer> server_;  // last: stopped first
 };
 
 }  // namespace tilejet::api
