@@ -156,10 +156,6 @@ struct SubmitArgs {
     bool wait = false;
 };
 
-std::string absolute(const std::string& path) {
-    return std::filesystem::absolute(path).lexically_normal().string();
-}
-
 // One line per change; rewritten in place on a terminal.
 void print_progress(const json& job) {
     static std::string last;
@@ -203,10 +199,15 @@ bool wait_for(ApiClient& api, std::int64_t id, int timeout_s) {
 
 void run_submit(const SubmitArgs& a, const std::string& address, const Credentials& who) {
     const auto [w, h] = api::parse_tile_mm(a.tile_mm, "--tile-mm");
-    json body{{"map", absolute(a.map)}, {"seed", a.seed},     {"tiles", a.tiles},
-              {"tile_mm", {w, h}},      {"layout", a.layout}, {"wall_width", a.wall_width}};
+    // The daemon takes designs and profiles from its own folders, by name: a path given here
+    // names its file.
+    const auto file_name = [](const std::string& p) {
+        return std::filesystem::path(p).filename().string();
+    };
+    json body{{"map", file_name(a.map)}, {"seed", a.seed},     {"tiles", a.tiles},
+              {"tile_mm", {w, h}},       {"layout", a.layout}, {"wall_width", a.wall_width}};
     if (a.dpi) body["dpi"] = a.dpi;
-    if (!a.profile.empty()) body["profile"] = absolute(a.profile);
+    if (!a.profile.empty()) body["profile"] = file_name(a.profile);
     ApiClient api(api_address(address), who);
     const json job = api.post("/api/jobs", body);
     if (!a.wait) {
@@ -265,14 +266,20 @@ void add_job_commands(CLI::App& app) {
 
     auto s = std::make_shared<SubmitArgs>();
     CLI::App* submit = job->add_subcommand("submit", "queue a job");
-    submit->add_option("--map", s->map, "texture map file")->required();
+    submit
+        ->add_option("--map", s->map,
+                     "design: a texture map in the daemon's designs folder, by name (a path "
+                     "gives its file name)")
+        ->required();
     submit->add_option("--seed", s->seed, "job seed")->required();
     submit->add_option("--tiles", s->tiles, "tiles to print")
         ->required()
         ->check(CLI::Range(std::int64_t(1), std::int64_t(10'000'000)));
     submit->add_option("--tile-mm", s->tile_mm, "tile size WxH in mm")->required();
     submit->add_option("--dpi", s->dpi, "resolution; must be the design's (default: the design's)");
-    submit->add_option("--profile", s->profile, "CMYK output profile (default: [colour])");
+    submit->add_option("--profile", s->profile,
+                       "CMYK output profile in the daemon's profiles folder, by name (default: "
+                       "[colour])");
     submit->add_option("--layout", s->layout, "scatter (default) or wall")
         ->check(CLI::IsMember({"scatter", "wall"}));
     submit->add_option("--wall-width", s->wall_width, "tiles per wall row (wall layout)");

@@ -51,6 +51,23 @@ json files_in(const std::string& folder, std::initializer_list<const char*> exte
 
 // Written beside its final name and renamed: a reader never sees half a file. An existing file
 // is never replaced: queued jobs name it, and their tiles must stay what they were.
+// The file a job names in one of the daemon's folders (the API let through a plain name only):
+// a regular file itself, never a FIFO, a device or a symlink to elsewhere.
+fs::path named_file(const std::string& folder, const std::string& name, const std::string& field,
+                    const std::string& kind) {
+    if (folder.empty())
+        throw api::ApiError(
+            400, field,
+            field + ": no " + kind + "s folder is configured ([storage] " + kind + "s)");
+    const fs::path p = fs::path(folder) / name;
+    struct stat st {};
+    if (lstat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode))
+        throw api::ApiError(400, field,
+                            field + ": no " + kind + " '" + name + "' in the " + kind +
+                                "s folder (GET /api/" + kind + "s lists them)");
+    return p;
+}
+
 fs::path upload(const std::string& folder, const std::string& name, const std::string& bytes,
                 const char* extension, const char* kind,
                 const std::function<void(const fs::path&)>& check) {
@@ -192,6 +209,10 @@ json DaemonApi::submit(const jobs::JobSpec& submitted) {
     // Rejected here rather than when the line reaches the job: a queue must not stall on a
     // job that can never print.
     jobs::JobSpec spec = submitted;
+    spec.map = named_file(config_.storage.designs, spec.map, "map", "design").string();
+    if (!spec.profile.empty())
+        spec.profile =
+            named_file(config_.storage.profiles, spec.profile, "profile", "profile").string();
     double map_dpi = 0;
     try {
         const synth::TextureMap map = synth::load_texture_map(spec.map);

@@ -168,11 +168,11 @@ async function loadChoices() {
   try {
     const [designs, profiles] = await Promise.all([api("GET", "/api/designs"), api("GET", "/api/profiles")]);
     const design = $("f-design");
-    design.replaceChildren(...designs.map((d) => new Option(d.name, d.path)));
+    design.replaceChildren(...designs.map((d) => new Option(d.name, d.name)));
     if (designs.length === 0) design.append(new Option("(no designs in [storage] designs)", ""));
     const profile = $("f-profile");
     profile.replaceChildren(new Option("line default", ""),
-                            ...profiles.map((p) => new Option(p.name, p.path)));
+                            ...profiles.map((p) => new Option(p.name, p.name)));
   } catch (e) {
     $("submit-error").textContent = e.message;
   }

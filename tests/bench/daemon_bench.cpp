@@ -143,8 +143,8 @@ void on_the_line(double tile_mm, int dpi, const std::vector<int>& speeds, int ti
         test::DaemonProcess daemon(line, dir.path(), d);
         const auto [status, body] = daemon.request(
             "POST", "/api/jobs",
-            R"({"map":")" + map_at(dpi) + R"(","seed":11,"tiles":)" + std::to_string(tiles) +
-                R"(,"tile_mm":")" + std::to_string(int(tile_mm)) + "x" +
+            R"({"map":")" + daemon.add_design(map_at(dpi)) + R"(","seed":11,"tiles":)" +
+                std::to_string(tiles) + R"(,"tile_mm":")" + std::to_string(int(tile_mm)) + "x" +
                 std::to_string(int(tile_mm)) + R"(","dpi":)" + std::to_string(dpi) + "}");
         if (status != 201) throw std::runtime_error("job refused: " + body.dump());
         const auto id = body.at("id").get<std::int64_t>();

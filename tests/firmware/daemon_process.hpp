@@ -47,7 +47,8 @@ class DaemonProcess {
   public:
     DaemonProcess(const LinesimProcess& line, const std::filesystem::path& dir,
                   const DaemonOptions& o = {})
-        : config_path_((dir / "tilejetd.toml").string()),
+        : designs_(dir / "designs"),
+          config_path_((dir / "tilejetd.toml").string()),
           log_path_((dir / "tilejetd.log").string()) {
         std::ifstream in(line.config_path());
         std::stringstream cfg;
@@ -69,6 +70,18 @@ class DaemonProcess {
         start();
     }
     ~DaemonProcess() { stop(SIGTERM); }
+
+    // Copies a map into the daemon's designs folder (jobs name designs there), unless a file
+    // of that name is there already (never under a job that may be loading it), and returns
+    // its name there; `as` renames it.
+    std::string add_design(const std::filesystem::path& map, const std::string& as = "") const {
+        std::filesystem::create_directories(designs_);
+        const std::string name = as.empty() ? map.filename().string() : as;
+        if (!std::filesystem::exists(designs_ / name))
+            std::filesystem::copy_file(map, designs_ / name);
+        return name;
+    }
+    const std::filesystem::path& designs() const { return designs_; }
     DaemonProcess(const DaemonProcess&) = delete;
     DaemonProcess& operator=(const DaemonProcess&) = delete;
 
@@ -206,6 +219,7 @@ class DaemonProcess {
     void signal(int sig) const { kill(pid_, sig); }
 
   private:
+    std::filesystem::path designs_;
     std::string config_path_, log_path_;
     pid_t pid_ = -1;
     int port_ = 0;

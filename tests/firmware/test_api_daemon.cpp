@@ -31,8 +31,8 @@ test::LinesimOptions line_options() {
 std::int64_t submit(const test::DaemonProcess& d, int tiles) {
     const auto [status, body] =
         d.request("POST", "/api/jobs",
-                  R"({"map":")" TILEJET_TEST_MAP R"(","seed":99,"tiles":)" + std::to_string(tiles) +
-                      R"(,"tile_mm":"200x200","dpi":20})");
+                  R"({"map":")" + d.add_design(TILEJET_TEST_MAP) + R"(","seed":99,"tiles":)" +
+                      std::to_string(tiles) + R"(,"tile_mm":"200x200","dpi":20})");
     INFO(body.dump());
     REQUIRE(status == 201);
     return body.at("id").get<std::int64_t>();
@@ -196,7 +196,7 @@ TEST_CASE("an engineer adds a design; an operator may not", "[api][daemon][desig
     // A job of the uploaded design is accepted.
     std::tie(status, body) =
         daemon.request("POST", "/api/jobs",
-                       R"({"map":")" + designs[0]["path"].get<std::string>() +
+                       R"({"map":")" + designs[0]["name"].get<std::string>() +
                            R"(","seed":1,"tiles":1,"tile_mm":"200x200","dpi":20})");
     CHECK(status == 201);
 }
@@ -207,18 +207,19 @@ TEST_CASE("a job prints its design at the design's dpi: another is refused, none
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());
     // small.tjmap is built for 20 dpi (tests/CMakeLists.txt).
-    auto [status, body] = daemon.request("POST", "/api/jobs",
-                                         R"({"map":")" TILEJET_TEST_MAP
-                                         R"(","seed":1,"tiles":1,"tile_mm":"200x200","dpi":30})");
+    const std::string design = daemon.add_design(TILEJET_TEST_MAP);
+    auto [status, body] = daemon.request(
+        "POST", "/api/jobs",
+        R"({"map":")" + design + R"(","seed":1,"tiles":1,"tile_mm":"200x200","dpi":30})");
     INFO(body.dump());
     CHECK(status == 400);
     CHECK(body["field"] == "dpi");
     const std::string message = body["error"].get<std::string>();
     CHECK_THAT(message, Catch::Contains("30 dpi") && Catch::Contains("built for 20 dpi"));
     // Without a dpi the job takes the design's, whatever the line's default.
-    std::tie(status, body) = daemon.request("POST", "/api/jobs",
-                                            R"({"map":")" TILEJET_TEST_MAP
-                                            R"(","seed":1,"tiles":1,"tile_mm":"200x200"})");
+    std::tie(status, body) =
+        daemon.request("POST", "/api/jobs",
+                       R"({"map":")" + design + R"(","seed":1,"tiles":1,"tile_mm":"200x200"})");
     REQUIRE(status == 201);
     CHECK(body["dpi"] == 20);
     // The command line says the same.

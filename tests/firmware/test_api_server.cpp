@@ -87,7 +87,7 @@ class Client {
     httplib::Client c_;
 };
 
-const std::string kJob = R"({"map":"/maps/a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100"})";
+const std::string kJob = R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100"})";
 
 struct Endpoint {
     const char* method;
@@ -246,14 +246,16 @@ TEST_CASE("malformed JSON, unknown fields, bad values and oversize bodies name t
         const char* field;
     };
     const std::vector<Case> cases{
-        {R"({"map":"/a.tjmap","seed":1,)", 400, "body"},
+        {R"({"map":"a.tjmap","seed":1,)", 400, "body"},
         {R"([1,2])", 400, "body"},
-        {R"({"map":"/a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100","colour":"red"})", 400,
+        {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100","colour":"red"})", 400,
          "colour"},
-        {R"({"map":"/a.tjmap","seed":1,"tiles":0,"tile_mm":"100x100"})", 400, "tiles"},
-        {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100"})", 400, "map"},
-        {R"({"map":"/a.tjmap","seed":1,"tiles":2,"tile_mm":"100by100"})", 400, "tile_mm"},
-        {R"({"map":"/a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100","layout":"grid"})", 400,
+        {R"({"map":"a.tjmap","seed":1,"tiles":0,"tile_mm":"100x100"})", 400, "tiles"},
+        {R"({"map":"/maps/a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100"})", 400, "map"},
+        {R"({"map":"../a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100"})", 400, "map"},
+        {R"({"map":"/dev/zero","seed":1,"tiles":2,"tile_mm":"100x100"})", 400, "map"},
+        {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100by100"})", 400, "tile_mm"},
+        {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100","layout":"grid"})", 400,
          "layout"},
         {"{\"map\":\"/" + std::string(70 * 1024, 'a') + "\"}", 400, "body"},
     };

@@ -15,9 +15,9 @@ using nlohmann::json;
 namespace {
 
 constexpr int kSide = 157;  // 200 mm at 20 dpi
-std::string job_body(int tiles) {
-    return R"({"map":")" TILEJET_TEST_MAP R"(","seed":4242,"tiles":)" + std::to_string(tiles) +
-           R"(,"tile_mm":"200x200","dpi":20})";
+std::string job_body(const test::DaemonProcess& d, int tiles) {
+    return R"({"map":")" + d.add_design(TILEJET_TEST_MAP) + R"(","seed":4242,"tiles":)" +
+           std::to_string(tiles) + R"(,"tile_mm":"200x200","dpi":20})";
 }
 
 // The separations' SHA-256 per tile, rendered offline.
@@ -31,7 +31,7 @@ std::vector<std::string> reference_hashes(int tiles) {
 }
 
 std::int64_t submit(const test::DaemonProcess& d, int tiles) {
-    const auto [status, body] = d.request("POST", "/api/jobs", job_body(tiles));
+    const auto [status, body] = d.request("POST", "/api/jobs", job_body(d, tiles));
     INFO(body.dump());
     REQUIRE(status == 201);
     return body.at("id").get<std::int64_t>();
@@ -93,10 +93,11 @@ test::DaemonOptions render_bound_daemon_options(int queue_tiles) {
 }
 
 std::int64_t submit_large_tiles(const test::DaemonProcess& d, int seed, int tiles) {
-    const auto [status, body] = d.request(
-        "POST", "/api/jobs",
-        R"({"map":")" TILEJET_TEST_MAP_200DPI R"(","seed":)" + std::to_string(seed) +
-            R"(,"tiles":)" + std::to_string(tiles) + R"(,"tile_mm":"600x600","dpi":200})");
+    const auto [status, body] =
+        d.request("POST", "/api/jobs",
+                  R"({"map":")" + d.add_design(TILEJET_TEST_MAP_200DPI) + R"(","seed":)" +
+                      std::to_string(seed) + R"(,"tiles":)" + std::to_string(tiles) +
+                      R"(,"tile_mm":"600x600","dpi":200})");
     INFO(body.dump());
     REQUIRE(status == 201);
     return body.at("id").get<std::int64_t>();
@@ -111,22 +112,21 @@ TEST_CASE("a job prints every tile exactly once with the offline render's bytes"
     test::DaemonProcess daemon(line, dir.path());
 
     // A job whose map is missing or corrupt is refused at submit, naming the field.
-    auto [status, body] =
-        daemon.request("POST", "/api/jobs",
-                       R"({"map":"/nonexistent/x.tjmap","seed":1,"tiles":3,"tile_mm":"200x200"})");
+    auto [status, body] = daemon.request(
+        "POST", "/api/jobs", R"({"map":"x.tjmap","seed":1,"tiles":3,"tile_mm":"200x200"})");
     CHECK(status == 400);
     CHECK(body["field"] == "map");
     const auto corrupt = dir.path() / "corrupt.tjmap";
     std::ofstream(corrupt) << "TJMAP\r\n\x1a not a map";
-    std::tie(status, body) = daemon.request(
-        "POST", "/api/jobs",
-        R"({"map":")" + corrupt.string() + R"(","seed":1,"tiles":3,"tile_mm":"200x200"})");
+    std::tie(status, body) = daemon.request("POST", "/api/jobs",
+                                            R"({"map":")" + daemon.add_design(corrupt) +
+                                                R"(","seed":1,"tiles":3,"tile_mm":"200x200"})");
     CHECK(status == 400);
     CHECK(body["field"] == "map");
-    std::tie(status, body) =
-        daemon.request("POST", "/api/jobs",
-                       R"({"map":")" TILEJET_TEST_MAP
-                       R"(","seed":1,"tiles":3,"tile_mm":"200x200","profile":"/nonexistent.icc"})");
+    std::tie(status, body) = daemon.request(
+        "POST", "/api/jobs",
+        R"({"map":")" + daemon.add_design(TILEJET_TEST_MAP) +
+            R"(","seed":1,"tiles":3,"tile_mm":"200x200","profile":"nonexistent.icc"})");
     CHECK(status == 400);
     CHECK(body["field"] == "profile");
 
@@ -401,13 +401,12 @@ TEST_CASE("a job pins its design: a design file replaced before the job resumes 
           "[daemon][line][pin]") {
     test::LinesimProcess line(line_options());
     test::TempDir dir;
-    const auto design = dir.path() / "design.tjmap";
-    std::filesystem::copy_file(TILEJET_TEST_MAP, design);
     test::DaemonProcess daemon(line, dir.path());
+    const auto design = daemon.designs() / daemon.add_design(TILEJET_TEST_MAP, "design.tjmap");
     const auto [status, body] =
         daemon.request("POST", "/api/jobs",
-                       R"({"map":")" + design.string() +
-                           R"(","seed":4242,"tiles":200,"tile_mm":"200x200","dpi":20})");
+                       R"({"map":"design.tjmap",)"
+                       R"("seed":4242,"tiles":200,"tile_mm":"200x200","dpi":20})");
     REQUIRE(status == 201);
     const auto id = body.at("id").get<std::int64_t>();
     const std::string submitted_id = body.at("map_id").get<std::string>();

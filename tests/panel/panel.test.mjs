@@ -122,7 +122,7 @@ ${entry}`);
     assert.equal(await page.evaluate(() => document.cookie), "");
 
     // Queue a job from the form, with the design the daemon lists.
-    await page.waitForFunction(() => document.querySelectorAll("#f-design option[value^='/']").length > 0);
+    await page.waitForFunction(() => document.querySelectorAll("#f-design option[value$='.tjmap']").length > 0);
     await page.selectOption("#f-design", { label: path.basename(args.map) });
     await page.fill("#f-seed", "7");
     await page.fill("#f-count", "400");

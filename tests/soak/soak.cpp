@@ -96,8 +96,8 @@ class Soak {
                 const std::uint64_t seed = 1000 + jobs_.size();
                 const auto [status, body] = daemon_.request(
                     "POST", "/api/jobs",
-                    R"({"map":")" TILEJET_TEST_MAP R"(","seed":)" + std::to_string(seed) +
-                        R"(,"tiles":)" + std::to_string(kJobTiles) +
+                    R"({"map":")" + daemon_.add_design(TILEJET_TEST_MAP) + R"(","seed":)" +
+                        std::to_string(seed) + R"(,"tiles":)" + std::to_string(kJobTiles) +
                         R"(,"tile_mm":"200x200","dpi":20})");
                 if (status != 201) throw std::runtime_error("submit refused: " + body.dump());
                 jobs_.push_back({body.at("id").get<std::int64_t>(), seed});

@@ -1,5 +1,7 @@
 #include "tilejet/api/job_request.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -25,13 +27,20 @@ std::int64_t integer(const json& j, const std::string& field, std::int64_t min, 
     return v;
 }
 
-std::string path(const json& j, const std::string& field) {
-    if (!j.is_string()) bad(field, "expected a string (an absolute path)");
+// Jobs name a design (or profile) in the daemon's own folder, never a path: a client must not
+// make the daemon open /dev/zero or a FIFO, or learn which files exist. The same names as
+// uploads take (PUT /api/designs/NAME): no slashes, no leading dot.
+std::string file_name(const json& j, const std::string& field, const char* folder) {
+    const std::string hint = std::string("the name of a file in the daemon's ") + folder +
+                             " folder (GET /api/" + folder + ")";
+    if (!j.is_string()) bad(field, "expected " + hint);
     const auto s = j.get<std::string>();
-    // The daemon runs with its own working directory: a relative path would mean something
-    // else there than where the client stood.
-    if (s.empty() || s.front() != '/') bad(field, "must be an absolute path, got '" + s + "'");
-    if (s.size() > 4096) bad(field, "path too long");
+    const auto allowed = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+    };
+    if (s.empty() || s.size() > 100 || !std::isalnum(static_cast<unsigned char>(s.front())) ||
+        !std::all_of(s.begin(), s.end(), allowed))
+        bad(field, "expected " + hint + ", not a path");
     return s;
 }
 
@@ -70,7 +79,7 @@ jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
         if (!j.contains(required)) bad(required, "missing (required)");
 
     jobs::JobSpec spec;
-    spec.map = path(j["map"], "map");
+    spec.map = file_name(j["map"], "map", "designs");
     if (!j["seed"].is_number_integer() ||
         (!j["seed"].is_number_unsigned() && j["seed"].get<std::int64_t>() < 0))
         bad("seed", "expected an integer 0..2^64-1");
@@ -87,7 +96,7 @@ jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
         bad("tile_mm", "expected \"WxH\" or [W, H] in mm");
     }
     spec.dpi = j.contains("dpi") ? int(integer(j["dpi"], "dpi", 10, 2400)) : default_dpi;
-    if (j.contains("profile")) spec.profile = path(j["profile"], "profile");
+    if (j.contains("profile")) spec.profile = file_name(j["profile"], "profile", "profiles");
     if (j.contains("layout")) {
         if (!j["layout"].is_string()) bad("layout", "expected \"scatter\" or \"wall\"");
         spec.layout = j["layout"].get<std::string>();
