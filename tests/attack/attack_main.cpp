@@ -37,8 +37,13 @@ Row run(Target& t, const Attack& attack, const Scale& scale) {
     row.name = attack.name;
     Verdict v;
     if (!t.alive()) {
-        t.restart();
-        v.note("daemon restarted first (it died in an earlier attack)");
+        try {
+            t.restart();
+            v.note("daemon restarted first (it died in an earlier attack)");
+        } catch (const std::exception& e) {
+            row.failures.push_back(std::string("daemon dead and not restarted: ") + e.what());
+            return row;
+        }
     }
     t.wait_idle(seconds(30));
     const auto jobs_before = t.jobs();
@@ -83,10 +88,10 @@ Row run(Target& t, const Attack& attack, const Scale& scale) {
 }
 
 void print(const Row& r) {
-    std::printf("%-24s %8.0f ms %8.1f MB  %s%s%s\n", r.name.c_str(), r.worst_ms, r.growth_mb,
+    std::printf("%-26s %8.0f ms %8.1f MB  %s%s%s\n", r.name.c_str(), r.worst_ms, r.growth_mb,
                 r.failures.empty() ? "PASS" : "FAIL", r.failures.empty() ? "" : "  ",
                 join(r.failures).c_str());
-    if (!r.notes.empty()) std::printf("%-24s   (%s)\n", "", join(r.notes).c_str());
+    if (!r.notes.empty()) std::printf("%-26s   (%s)\n", "", join(r.notes).c_str());
     std::fflush(stdout);
 }
 
@@ -115,7 +120,11 @@ int main(int argc, char** argv) {
         for (Attack& a : family())
             if (only.empty() || only == a.name) attacks.push_back(std::move(a));
     if (attacks.empty()) {
-        std::cerr << "tilejet-attack: no attack named '" << only << "'\n";
+        std::cerr << "tilejet-attack: no attack named '" << only << "'; there are:";
+        for (auto family : {connection_attacks, file_attacks, sign_in_attacks})
+            for (const Attack& a : family())
+                std::cerr << " " << a.name;
+        std::cerr << "\n";
         return 2;
     }
 
@@ -138,7 +147,7 @@ int main(int argc, char** argv) {
         return 2;
     }
 
-    std::printf("%-24s %11s %11s  %s\n", "attack", "status", "RSS growth", "verdict");
+    std::printf("%-26s %11s %11s  %s\n", "attack", "status", "RSS growth", "verdict");
     const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double, std::ratio<60>>(minutes));
     int failed = 0, rounds = 0;
