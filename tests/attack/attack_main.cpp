@@ -45,6 +45,15 @@ Row run(Target& t, const Attack& attack, const Scale& scale) {
             return row;
         }
     }
+    try {
+        std::vector<std::string> renewed;
+        t.renew_sessions(renewed);
+        for (const std::string& user : renewed)
+            v.note(user + " signed in again first (signed out by an earlier attack)");
+    } catch (const std::exception& e) {
+        row.failures.push_back(std::string("could not sign in again: ") + e.what());
+        return row;
+    }
     t.wait_idle(seconds(30));
     const auto jobs_before = t.jobs();
     const std::string log_before = t.print_log();

@@ -73,6 +73,15 @@ void Target::sign_in_all() {
     viewer_ = session_of("vera");
 }
 
+void Target::renew_sessions(std::vector<std::string>& renewed) {
+    for (auto [user, session] : {std::pair{"olga", &operator_}, std::pair{"erik", &engineer_},
+                                 std::pair{"vera", &viewer_}})
+        if (request(*session, "GET", "/api/session").status == 401) {
+            *session = session_of(user);
+            renewed.push_back(user);
+        }
+}
+
 bool Target::alive() const {
     // Not reaped here: DaemonProcess reaps its child; a zombie is a dead daemon.
     std::ifstream stat("/proc/" + std::to_string(pid()) + "/stat");

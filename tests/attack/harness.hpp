@@ -89,6 +89,10 @@ class Target {
     const httplib::Headers& viewer_session() const { return viewer_; }
     std::string host_header() const { return "127.0.0.1:" + std::to_string(port()); }
 
+    // Signs in again whoever an earlier attack signed out (a session flood may, and is failed
+    // for it), so that the attacks after it measure themselves; says whom in `renewed`.
+    void renew_sessions(std::vector<std::string>& renewed);
+
     Answer request(const httplib::Headers& who, const std::string& method, const std::string& path,
                    const std::string& body = {}, seconds timeout = seconds(10),
                    const char* type = "application/json") const;
