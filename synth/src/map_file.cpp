@@ -32,6 +32,8 @@ constexpr char kMagic[8] = {'T', 'J', 'M', 'A', 'P', '\r', '\n', '\x1a'};
 constexpr size_t kHeaderBytes = 32, kEntryBytes = 32;
 constexpr uint32_t kFlagZlib = 1;
 constexpr uint32_t kMaxSections = 4096;
+// META holds a few numbers.
+constexpr uint32_t kMaxMetaBytes = 1024;
 constexpr uint32_t kMaxRawSection = 256u << 20;
 // A whole map, on disk and inflated: a 8192 px slab's source is 201 MB raw.
 constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30, kMaxRawTotal = uint64_t(1) << 30;
@@ -403,13 +405,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         e.payload = bytes.subspan(size_t(offset), stored);
         entries.push_back(std::move(e));
     }
-    // Then each section, inflated once and kept once.
-    std::vector<Section> ordered;  // file order, for the content hash
-    std::vector<uint8_t> ident;
-    std::vector<bool> used(entries.size(), false);
-    std::vector<size_t> slot(entries.size(), SIZE_MAX);
-    for (size_t i = 0; i < entries.size(); ++i) {
-        const Entry& e = entries[i];
+    const auto inflate = [&](const Entry& e) {
         if (crc_of(e.payload) != e.crc && kVerifyChecksums)
             fail(e.label + " is corrupted (checksum mismatch)");
         std::vector<uint8_t> data;
@@ -424,6 +420,34 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
             if (e.payload.size() != e.raw_len) fail(e.label + " has inconsistent lengths");
             data.assign(e.payload.begin(), e.payload.end());
         }
+        return data;
+    };
+    // Then, from the small META section alone, how many cell images the map holds: a section
+    // no map of that many could use is refused before anything large is inflated (three of
+    // them, each under the size cap, once cost a load 768 MB before the refusal).
+    {
+        const auto meta = where_is.find({"META", 0});
+        if (meta == where_is.end()) fail("section META[0] is missing");
+        if (entries[meta->second].raw_len > kMaxMetaBytes) fail("section META[0] is too large");
+        const std::vector<uint8_t> data = inflate(entries[meta->second]);
+        Reader r(data, where + " section META[0]");
+        r.le<uint32_t>("cell width"), r.le<uint32_t>("cell height");
+        const auto images = r.le<uint32_t>("cell image count");
+        for (const Entry& e : entries) {
+            const bool per_image = e.tag == "CELL" || e.tag == "PATA" || e.tag == "PATB" ||
+                                   e.tag == "OVLA" || e.tag == "OVLB";
+            if (per_image ? e.index >= images : e.index != 0)
+                fail(e.label + " is not part of this map");
+        }
+    }
+    // Then each section, inflated once and kept once.
+    std::vector<Section> ordered;  // file order, for the content hash
+    std::vector<uint8_t> ident;
+    std::vector<bool> used(entries.size(), false);
+    std::vector<size_t> slot(entries.size(), SIZE_MAX);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const Entry& e = entries[i];
+        std::vector<uint8_t> data = inflate(e);
         if (e.tag == "IDNT") {
             ident = std::move(data);
         } else {

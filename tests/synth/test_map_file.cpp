@@ -199,6 +199,17 @@ TEST_CASE("damaged map files are refused with a message naming the file", "[mapf
         REQUIRE_THAT(load_error(dir, file_of(sections)),
                      Contains(name) && Contains("CELL[7] is not part of this map"));
     }
+    SECTION("a known section no map of this many cell images uses is refused before inflating") {
+        auto sections = sections_of(good);
+        // Claims 200 MiB inflated (and would not inflate at all): the table and META alone
+        // refuse it, so no decompression is tried.
+        sections.push_back({"OVLA", 9, 200u << 20, 1, "x"});
+        REQUIRE_THAT(load_error(dir, file_of(sections)),
+                     Contains(name) && Contains("OVLA[9] is not part of this map"));
+        sections.back() = {"SRCE", 1, 200u << 20, 1, "x"};
+        REQUIRE_THAT(load_error(dir, file_of(sections)),
+                     Contains(name) && Contains("SRCE[1] is not part of this map"));
+    }
     SECTION("a section twice is refused") {
         auto sections = sections_of(good);
         sections.push_back(sections.front());

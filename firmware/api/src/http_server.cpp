@@ -35,7 +35,8 @@ struct LaneSize {
     int threads;
     std::size_t queued;
 };
-constexpr LaneSize kLaneSizes[] = {{4, 256}, {1, 32}, {1, 16}};  // requests, sign_in, pictures
+// A queued request costs its connection's 32 KB and its body (64 KB at most for these).
+constexpr LaneSize kLaneSizes[] = {{4, 256}, {1, 128}, {1, 16}};  // requests, sign_in, pictures
 
 std::string numeric_address(const sockaddr* addr) {
     char host[NI_MAXHOST] = "";
