@@ -1,3 +1,6 @@
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
 
@@ -99,12 +102,24 @@ GpioConfig parse_gpio_section(const toml::table* table, const ConfigSource& sour
     return c;
 }
 
+std::string sim_runtime_directory() {
+    if (const char* d = std::getenv("RUNTIME_DIRECTORY"); d && *d == '/')
+        return std::string(d).substr(0, std::string(d).find(':'));  // the first of several
+    if (const char* d = std::getenv("XDG_RUNTIME_DIR"); d && *d == '/')
+        return std::string(d) + "/tilejet-sim";
+    return "/tmp/tilejet-sim-" + std::to_string(::getuid());
+}
+
 SimConfig parse_sim_section(const toml::table* table, const ConfigSource& source) {
     ConfigSection s(table, source, "sim");
     SimConfig c;
-    c.gpio_socket = s.get_string("gpio_socket", c.gpio_socket);
-    c.head_socket = s.get_string("head_socket", c.head_socket);
-    c.control_socket = s.get_string("control_socket", c.control_socket);
+    const auto socket = [&](const char* key, const std::string& fallback) {
+        const std::string path = s.get_string(key, fallback);
+        return path.find('/') == std::string::npos ? sim_runtime_directory() + "/" + path : path;
+    };
+    c.gpio_socket = socket("gpio_socket", c.gpio_socket);
+    c.head_socket = socket("head_socket", c.head_socket);
+    c.control_socket = socket("control_socket", c.control_socket);
     c.speed_mm_s = int(s.get_int("speed_mm_s", c.speed_mm_s, 0, 0xffff));
     c.start_running = s.get_bool("start_running", c.start_running);
     c.head_buffer_tiles = int(s.get_int("head_buffer_tiles", c.head_buffer_tiles, 1, 64));

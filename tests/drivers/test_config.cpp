@@ -1,7 +1,10 @@
 // Config sections and the register map file: defaults, and errors that name file, section, key
 // and line.
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -37,6 +40,35 @@ TEST_CASE("the shipped config loads with the values it states", "[drivers][confi
     CHECK(c.registers.registers().size() == 8);
     CHECK(c.registers.at("tile_counter").words() == 2);
     CHECK(c.registers.at("speed_setpoint").retain);
+}
+
+TEST_CASE("the simulator's sockets named without a folder are in a private runtime folder",
+          "[drivers][config][security]") {
+    const char* saved_runtime = std::getenv("RUNTIME_DIRECTORY");
+    const char* saved_xdg = std::getenv("XDG_RUNTIME_DIR");
+    const std::string keep_runtime = saved_runtime ? saved_runtime : "";
+    const std::string keep_xdg = saved_xdg ? saved_xdg : "";
+    const std::string shipped = TILEJET_SOURCE_DIR "/config/tilejet.toml";
+    ::setenv("RUNTIME_DIRECTORY", "/run/tilejet:/run/other", 1);
+    auto c = drivers::load_drivers_config(shipped);
+    CHECK(c.sim.gpio_socket == "/run/tilejet/gpio.sock");
+    CHECK(c.sim.head_socket == "/run/tilejet/heads.sock");
+    CHECK(c.sim.control_socket == "/run/tilejet/control.sock");
+    ::unsetenv("RUNTIME_DIRECTORY");
+    ::setenv("XDG_RUNTIME_DIR", "/run/user/1000", 1);
+    CHECK(drivers::load_drivers_config(shipped).sim.gpio_socket ==
+          "/run/user/1000/tilejet-sim/gpio.sock");
+    ::unsetenv("XDG_RUNTIME_DIR");
+    // Never a folder every local user shares by name.
+    CHECK(drivers::load_drivers_config(shipped).sim.gpio_socket ==
+          "/tmp/tilejet-sim-" + std::to_string(::getuid()) + "/gpio.sock");
+    // A path with a folder is taken as it is.
+    test::TempDir dir;
+    const auto own =
+        write(dir, "own.toml", "[line]\n" + kMap + "[sim]\ngpio_socket = \"/srv/line/gpio.sock\"\n");
+    CHECK(drivers::load_drivers_config(own).sim.gpio_socket == "/srv/line/gpio.sock");
+    if (saved_runtime) ::setenv("RUNTIME_DIRECTORY", keep_runtime.c_str(), 1);
+    if (saved_xdg) ::setenv("XDG_RUNTIME_DIR", keep_xdg.c_str(), 1);
 }
 
 TEST_CASE("an unknown key names file, section, key and line", "[drivers][config]") {

@@ -152,8 +152,12 @@ TEST_CASE("the simulator's socket folder is private: made 0700, a symlinked one 
     const auto run_with_sockets_in = [&](const std::filesystem::path& folder) {
         std::ifstream in(TILEJET_SOURCE_DIR "/config/tilejet.toml");
         std::string config((std::istreambuf_iterator<char>(in)), {});
-        for (size_t at; (at = config.find("/tmp/tilejet-sim/")) != std::string::npos;)
-            config.replace(at, 17, folder.string() + "/");
+        // Each socket's name, without a folder as shipped, put in `folder`.
+        for (const std::string name : {"\"gpio.sock\"", "\"heads.sock\"", "\"control.sock\""}) {
+            const size_t at = config.find(name);
+            REQUIRE(at != std::string::npos);
+            config.insert(at + 1, folder.string() + "/");
+        }
         config.replace(config.find("port = 1502"), 11, "port = 0");
         config.replace(config.find("\"registers.toml\""), 16,
                        "\"" TILEJET_SOURCE_DIR "/config/registers.toml\"");

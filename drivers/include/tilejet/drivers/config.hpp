@@ -57,10 +57,11 @@ struct GpioConfig {
 
 // [sim]: the line simulator's sockets and starting state. The simulator's Modbus server listens
 // on [modbus] host:port, so one file configures both ends.
+// Socket paths without a folder are in sim_runtime_directory().
 struct SimConfig {
-    std::string gpio_socket = "/tmp/tilejet-sim/gpio.sock";
-    std::string head_socket = "/tmp/tilejet-sim/heads.sock";
-    std::string control_socket = "/tmp/tilejet-sim/control.sock";
+    std::string gpio_socket = "gpio.sock";
+    std::string head_socket = "heads.sock";
+    std::string control_socket = "control.sock";
     int speed_mm_s = 500;        // speed setpoint at power-up
     bool start_running = false;  // conveyor running at power-up
     int head_buffer_tiles = 2;   // separations the heads hold ahead of the tiles
@@ -68,6 +69,12 @@ struct SimConfig {
     // core at about 5 tiles/s; a throughput benchmark on a small machine cannot spare it.
     bool head_checksums = true;
 };
+
+// Where the simulator's sockets live unless the config names a folder: whoever can write there
+// can fake the e-stop line or the heads, so a private one. systemd's RuntimeDirectory=
+// ($RUNTIME_DIRECTORY, e.g. /run/tilejet), else the user's ($XDG_RUNTIME_DIR/tilejet-sim), else
+// /tmp/tilejet-sim-UID. The simulator makes it 0700 and refuses one that is not the user's own.
+std::string sim_runtime_directory();
 
 struct DriversConfig {
     std::string file;  // the config file, for messages
