@@ -101,6 +101,7 @@ class Reader {
         pos_ += n;
         return s;
     }
+    size_t remaining() const { return data_.size() - pos_; }
     void done() const {
         if (pos_ != data_.size())
             throw MapFileError(where_ + ": " + std::to_string(data_.size() - pos_) +
@@ -177,6 +178,9 @@ PatchSet read_patches(Reader& r, const TextureMap& map) {
     const auto n = r.le<uint32_t>("patch count");
     if (n > 65535) r.fail("patch count " + std::to_string(n) + " is over 65535");
     set.activation_threshold = r.le<uint64_t>("activation threshold");
+    // Each patch takes 28 bytes before its mask: a count the section cannot hold is refused
+    // before the patches are allocated.
+    if (r.remaining() < size_t(n) * 28) r.fail("ends before its " + std::to_string(n) + " patches");
     const detail::CellGrid grid(map.cell_width, map.cell_height);
     set.patches.resize(n);
     for (uint32_t k = 0; k < n; ++k) {
@@ -216,7 +220,13 @@ void read_overlaps(Reader& r, PatchSet& set) {
     if (n != set.size())
         r.fail("overlap matrix is for " + std::to_string(n) + " patches, the set has " +
                std::to_string(set.size()));
-    set.overlap_bits.resize(set.size() * set.overlap_row_words());
+    // Checked against what the section holds before the matrix is allocated.
+    const size_t words = set.size() * set.overlap_row_words();
+    if (r.remaining() != words * sizeof(uint64_t))
+        r.fail("overlap matrix of " + std::to_string(n) + " patches needs " +
+               std::to_string(words * sizeof(uint64_t)) + " bytes, the section holds " +
+               std::to_string(r.remaining()));
+    set.overlap_bits.resize(words);
     for (uint64_t& word : set.overlap_bits)
         word = r.le<uint64_t>("overlap bits");
 }

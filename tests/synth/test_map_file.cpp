@@ -210,6 +210,17 @@ TEST_CASE("damaged map files are refused with a message naming the file", "[mapf
         REQUIRE_THAT(load_error(dir, file_of(sections)),
                      Contains(name) && Contains("SRCE[1] is not part of this map"));
     }
+    SECTION("a patch count the section cannot hold is refused before the patches are allocated") {
+        auto sections = sections_of(good);
+        for (StoredSection& sec : sections)
+            if (sec.tag == "PATA" && sec.index == 0) {
+                sec.payload.clear();
+                put_le(sec.payload, 65535, 4), put_le(sec.payload, 0, 8);
+                sec.raw_len = uint32_t(sec.payload.size()), sec.flags = 0;
+            }
+        REQUIRE_THAT(load_error(dir, file_of(sections)),
+                     Contains("PATA[0]") && Contains("ends before its 65535 patches"));
+    }
     SECTION("a section twice is refused") {
         auto sections = sections_of(good);
         sections.push_back(sections.front());
