@@ -33,7 +33,7 @@ PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
     seq_ = store_.last_seq();
     // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
     // before the first send.
-    mirror_certain_ = false;
+    mirror_.doubt();
     gpio_->set(GpioOutput::print_enable, false);
 }
 
@@ -62,7 +62,7 @@ void PrintLoop::run() {
             } catch (const std::exception&) {
                 // The GPIO chip is gone too; its own side drops print-enable (PROTOCOLS.md).
             }
-            mirror_certain_ = false;
+            mirror_.doubt();
             state_.set(LineStatus::faulted, e.what());
             publish();
             if (draining_) break;  // stopping anyway: a broken line must not hold up SIGTERM
@@ -218,7 +218,7 @@ bool PrintLoop::poll_line() {
         if (enabled != enabled_at_poll_) {
             // Print-enable changed since the last poll (e-stop latch): whether these tiles
             // got ink is unknown.
-            mirror_certain_ = false;
+            mirror_.doubt();
             log_line("tiles reached the heads while print-enable changed: resync");
         } else {
             on_arrivals(arrived, enabled, prev_poll_start_);
@@ -305,7 +305,7 @@ void PrintLoop::on_counter_fault(const std::string& why) {
     line_->stop();
     run_commanded_ = false;
     // What the heads printed while the counter lied is unknown: resync before printing again.
-    mirror_certain_ = false;
+    mirror_.doubt();
     counter_fault_ = why;
     log_line(why + ": conveyor stopped, print-enable low; acknowledge to resync");
 }
@@ -313,16 +313,14 @@ void PrintLoop::on_counter_fault(const std::string& why) {
 void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound) {
     for (std::uint32_t i = 0; i < count; ++i) {
         const std::int64_t line_tile = std::int64_t(counter_) + i;
-        if (print_enable && !mirror_.empty()) {
-            const HeadEntry e = mirror_.front();
-            mirror_.pop_front();
+        if (const auto e = print_enable ? mirror_.arrived() : std::nullopt) {
             ++line_printed_;
-            if (!e.known || e.index < 0) {
+            if (!e->is_tile()) {
                 ++blanks_;
-                if (e.known) store_.mark_printed(e.job, e.index, line_tile);
+                if (e->known) store_.mark_printed(e->job, e->index, line_tile);
             } else {
-                store_.mark_printed(e.job, e.index, line_tile);
-                last_printed_ = Printed{e, lower_bound + i * pitch_time()};
+                store_.mark_printed(e->job, e->index, line_tile);
+                last_printed_ = Printed{*e, lower_bound + i * pitch_time()};
             }
         } else {
             ++line_missed_;
@@ -366,7 +364,7 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         line_state_ = st;
         enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
     } catch (const std::exception& e) {
-        mirror_certain_ = false;
+        mirror_.doubt();
         counter_known_ = false;
         log_line("e-stop: PLC not reachable (" + std::string(e.what()) + "); resync after it");
     }
@@ -392,7 +390,7 @@ void PrintLoop::on_link_lost(const std::string& why) {
     if (link_up_ || state_.status() != LineStatus::faulted) {
         // Tiles may reach the heads unseen from now on: with print-enable low they pass
         // unprinted and the heads keep their buffer, but the last moments before are unknown.
-        mirror_certain_ = false;
+        mirror_.doubt();
         counter_known_ = false;
         link_up_ = false;
         run_commanded_ = false;
@@ -451,8 +449,7 @@ void PrintLoop::print_turn() {
     }
     check_job_done();
     if (draining_) {
-        const bool holds_job_tiles = std::any_of(mirror_.begin(), mirror_.end(),
-                                                 [](auto& e) { return e.known && e.index >= 0; });
+        const bool holds_job_tiles = mirror_.holds_tiles();
         if (!holds_job_tiles || !want_print_ || Clock::now() > drain_deadline_ ||
             !line_state_.running) {
             if (holds_job_tiles)
@@ -463,8 +460,7 @@ void PrintLoop::print_turn() {
         return;
     }
     if (!job_) {
-        const bool blanks_only = std::all_of(mirror_.begin(), mirror_.end(),
-                                             [](auto& e) { return !e.known || e.index < 0; });
+        const bool blanks_only = !mirror_.holds_tiles();
         if (line_state_.running && blanks_only)
             park("no job", LineStatus::idle);
         else if (!line_state_.running)
@@ -475,10 +471,10 @@ void PrintLoop::print_turn() {
         park("paused by the operator", LineStatus::paused);
         return;
     }
-    if (!mirror_certain_) {
+    if (!mirror_.certain()) {
         park("finding out what the heads hold", LineStatus::ready);
         if (conveyor_stopped() && !resync()) return;
-        if (!mirror_certain_) return;
+        if (!mirror_.certain()) return;
     }
     if (render_wait_ && !conveyor_stopped()) {
         park(render_reason_, LineStatus::paused);
@@ -517,7 +513,7 @@ void PrintLoop::print_turn() {
     while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ &&
            Clock::now() < deadline(mirror_.size()) && send_next(true)) {
     }
-    if (!mirror_certain_) return;
+    if (!mirror_.certain()) return;
     if (render_.ready() >= render_.capacity() && speed_ < print_.speed_mm_s &&
         Clock::now() - last_speed_change_ > 2s) {
         speed_ = std::min(print_.speed_mm_s, speed_ + std::max(1, speed_ / 4));
@@ -623,12 +619,12 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
         return SendResult::failed;
     }
     store_.mark_sent(entry.job, entry.index);
-    mirror_.push_back(entry);
+    mirror_.sent(entry);
     if (deadline_applies && Clock::now() > deadline(mirror_.size() - 1)) {
         log_line("tile " + std::to_string(entry.index) + " reached the heads " +
                  ms_text(Clock::now() - deadline(mirror_.size() - 1)) +
                  " too close to a tile's arrival: resync");
-        mirror_certain_ = false;
+        mirror_.doubt();
     }
     // The heads' count in the answer is not compared with the mirror: while the conveyor runs a
     // tile may take the oldest separations during the send (rule 2 only keeps a send ahead of
@@ -653,7 +649,7 @@ bool PrintLoop::heads_hold_mirror() {
     if (held > int(mirror_.size())) {
         log_line("heads hold " + std::to_string(held) + " tiles, " +
                  std::to_string(mirror_.size()) + " expected: resync");
-        mirror_certain_ = false;
+        mirror_.doubt();
         return false;
     }
     return true;
@@ -663,10 +659,8 @@ void PrintLoop::on_heads_lost(std::size_t count) {
     // The heads emptied their buffer (a restart): the oldest entries are gone unprinted. They
     // are marked missed and go out again, same index, same bytes.
     std::string lost;
-    for (std::size_t i = 0; i < count; ++i) {
-        const HeadEntry e = mirror_.front();
-        mirror_.pop_front();
-        if (!e.known || e.index < 0) continue;
+    for (const HeadEntry& e : mirror_.lose_oldest(count)) {
+        if (!e.is_tile()) continue;
         store_.mark_missed(e.job, e.index);
         lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
     }
@@ -677,8 +671,7 @@ void PrintLoop::on_heads_lost(std::size_t count) {
 bool PrintLoop::resync() {
     const std::vector<jobs::QueuedTile> old = store_.heads_queue();
     if (old.empty()) {
-        mirror_.clear();
-        mirror_certain_ = true;
+        mirror_.known_empty();
         return true;
     }
     const int capacity = print_.head_buffer_tiles;
@@ -707,40 +700,28 @@ bool PrintLoop::resync() {
             // Put back what the probe sent; the next turn starts over.
             for (const HeadEntry& p : probes)
                 if (p.index >= 0) store_.unmark_sending(p.job, p.index);
-            mirror_.clear();
+            mirror_.forget();
             return false;
         }
         probes.push_back(entry);
     }
     // `held` of the old tiles are still in the heads: the newest ones.
-    int held = full ? capacity - int(probes.size()) : 0;
-    std::vector<jobs::QueuedTile> olds = old;
-    if (olds.back().state == jobs::TileState::sending) {
-        // The daemon stopped between marking it and hearing back: whether it got there shows
-        // in the count (no tile can have reached the heads during a send, rule 2).
-        if (held == int(olds.size()) - 1) {
-            store_.unmark_sending(olds.back().job, olds.back().index);
-            olds.pop_back();
-        } else {
-            store_.mark_sent(olds.back().job, olds.back().index);
-        }
+    const int held = full ? capacity - int(probes.size()) : 0;
+    const ResyncPlan plan = HeadMirror::plan_resync(old, held);
+    if (plan.last_sending_reached) {
+        const jobs::QueuedTile& last = old.back();
+        if (*plan.last_sending_reached)
+            store_.mark_sent(last.job, last.index);
+        else
+            store_.unmark_sending(last.job, last.index);
     }
-    const int unknown = std::max(0, held - int(olds.size()));
-    if (unknown > 0)
-        log_line("resync: the heads hold " + std::to_string(unknown) +
+    if (plan.unknown > 0)
+        log_line("resync: the heads hold " + std::to_string(plan.unknown) +
                  " tile(s) the job store never sent; they will pass as blanks");
-    const int printed = int(olds.size()) - std::min<int>(held, int(olds.size()));
-    for (int i = 0; i < printed; ++i)
-        store_.mark_printed(olds[size_t(i)].job, olds[size_t(i)].index, -1);
-    std::deque<HeadEntry> mirror;
-    for (int i = 0; i < unknown; ++i)
-        mirror.push_back({0, -1, false});
-    for (size_t i = size_t(printed); i < olds.size(); ++i)
-        mirror.push_back({olds[i].job, olds[i].index, true});
-    for (const HeadEntry& p : probes)
-        mirror.push_back(p);
-    mirror_ = std::move(mirror);
-    mirror_certain_ = true;
+    for (const HeadEntry& e : plan.printed)
+        store_.mark_printed(e.job, e.index, -1);
+    mirror_.adopt(plan, probes);
+    const int printed = int(plan.printed.size());
     log_line("resync: heads hold " + std::to_string(held) + " earlier tile(s); " +
              std::to_string(printed) + " sent before were printed; " +
              std::to_string(probes.size()) + " sent now");
@@ -751,9 +732,7 @@ void PrintLoop::check_job_done() {
     if (!job_) return;
     const auto job = store_.job(job_->id);
     if (!job) return;
-    const bool holds = std::any_of(mirror_.begin(), mirror_.end(), [&](const HeadEntry& e) {
-        return e.known && e.job == job_->id && e.index >= 0;
-    });
+    const bool holds = mirror_.holds_tiles_of(job_->id);
     const bool cancelled = job->status == jobs::JobStatus::cancelled;
     if ((stop_job_ || cancelled) && !holds) {
         end_job(jobs::JobStatus::cancelled, "stopped by the operator",

@@ -15,13 +15,13 @@
 //     tiles they still hold. The heads' buffer is a FIFO, so those are the newest of the tiles
 //     the store says were sent; the older ones were printed.
 #include <chrono>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "controller.hpp"
 #include "daemon_config.hpp"
+#include "head_mirror.hpp"
 #include "line_state.hpp"
 #include "render_ahead.hpp"
 #include "tilejet/drivers/gpio.hpp"
@@ -42,11 +42,6 @@ class PrintLoop {
 
   private:
     using Clock = std::chrono::steady_clock;
-    struct HeadEntry {
-        std::int64_t job = 0;
-        std::int64_t index = 0;  // < 0: a blank sent to probe the heads; > unknown: -1
-        bool known = true;       // false: something the heads held that the store never saw
-    };
 
     void turn();
     void handle_commands();
@@ -103,8 +98,7 @@ class PrintLoop {
 
     std::optional<jobs::Job> job_;
     std::shared_ptr<const TileRenderer> renderer_;
-    std::deque<HeadEntry> mirror_;
-    bool mirror_certain_ = false;
+    HeadMirror mirror_;
     std::int64_t seq_ = 0;
 
     bool want_print_ = true;  // the operator's resume/pause

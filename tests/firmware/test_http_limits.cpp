@@ -125,6 +125,14 @@ TEST_CASE("idle connections past the per-address cap make room: the oldest idle 
     api::ApiServer server(backend, "127.0.0.1", 0, small_limits());
     Client operator_client(server.port());
     const auto h = operator_client.session("olga");
+    // The panel's keep-alive connection, between two good answers.
+    RawConnection panel(server.port());
+    const std::string status_request =
+        "GET /api/status HTTP/1.1\r\nHost: localhost\r\nCookie: " + h.find("Cookie")->second +
+        "\r\n\r\n";
+    REQUIRE(panel.send(status_request));
+    CHECK_FALSE(panel.closed_within(300ms));
+    REQUIRE_THAT(panel.received(), Catch::StartsWith("HTTP/1.1 200"));
     std::vector<std::unique_ptr<RawConnection>> idle;
     for (int i = 0; i < 30; ++i)  // 20 per address
         idle.push_back(std::make_unique<RawConnection>(server.port()));
@@ -134,8 +142,12 @@ TEST_CASE("idle connections past the per-address cap make room: the oldest idle 
         closed += idle[size_t(i)]->closed_within(300ms);
     CHECK(closed == 10);
     CHECK_FALSE(idle.back()->closed_within(100ms));
-    // ...and the operator, from the same address, is answered at once.
+    // ...and the operator, from the same address, is answered at once, on a new connection and
+    // on the panel's: the idle ones went first.
     CHECK(worst_status(operator_client, h) < 500ms);
+    REQUIRE(panel.send(status_request));
+    CHECK_FALSE(panel.closed_within(300ms));
+    CHECK(panel.received().find("HTTP/1.1 200", 10) != std::string::npos);
 }
 
 TEST_CASE("request lines and header blocks past 32 KB are refused without being kept",
@@ -162,23 +174,25 @@ TEST_CASE("request lines and header blocks past 32 KB are refused without being 
 TEST_CASE("a chunked body past its route's limit is refused as it arrives", "[api][limits]") {
     FakeBackend backend;
     api::ApiServer server(backend, "127.0.0.1", 0, small_limits());
-    const std::string head = "POST /api/session HTTP/1.1\r\nHost: localhost\r\n"
-                             "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
+    const std::string head =
+        "POST /api/session HTTP/1.1\r\nHost: localhost\r\n"
+        "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
     const std::string chunk = "10000\r\n" + std::string(0x10000, ' ') + "\r\n";  // 64 KB
     SECTION("a little past: read to its end and answered") {
         RawConnection c(server.port());
         REQUIRE(c.send(head + chunk + chunk + "0\r\n\r\n"));
         c.closed_within(2s);
-        CHECK_THAT(c.received(),
-                   Catch::StartsWith("HTTP/1.1 400") && Catch::Contains("too large"));
+        CHECK_THAT(c.received(), Catch::StartsWith("HTTP/1.1 400") && Catch::Contains("too large"));
     }
     SECTION("far past: cut off after a megabyte, long before the 64 MB it would send") {
+        // What the sockets' buffers take after the server closed (a few MB on loopback) still
+        // counts as sent here.
         RawConnection c(server.port());
         REQUIRE(c.send(head));
         int sent = 0;
         while (sent < 1024 && c.send(chunk))
             ++sent;
-        CHECK(sent < 64);
+        CHECK(sent < 256);
     }
 }
 

@@ -56,6 +56,8 @@ struct HttpServer::Connection {
     bool in_request = false;                // headers in, not yet answered
     bool reading_body = false;              // a request whose body is still coming
     bool shut = false;                      // closed by a deadline or for a newer connection
+    int answered = 0;                       // requests answered on it so far
+    bool last_refused = false;              // the last answer was an error (4xx, 5xx)
 };
 
 // One request and its answer: libmicrohttpd's per-request closure.
@@ -139,22 +141,29 @@ bool HttpServer::accept(const std::string& address) {
     int total = 0, same = 0;
     for (const Connection* c : connections_)
         if (!c->shut) ++total, same += c->address == address;
-    if (same >= limits_.connections_per_address && !evict_oldest_idle(address)) return false;
-    if (total >= limits_.connections && !evict_oldest_idle("")) return false;
+    if (same >= limits_.connections_per_address && !evict_idle(address)) return false;
+    if (total >= limits_.connections && !evict_idle("")) return false;
     return true;
 }
 
-bool HttpServer::evict_oldest_idle(const std::string& address) {
-    Connection* oldest = nullptr;
+bool HttpServer::evict_idle(const std::string& address) {
+    // Who goes first: a connection that never sent a whole request (an idle or slow one: the
+    // classic flood), then one whose last answer was a refusal, then a client's keep-alive
+    // connection between good answers (the operator's panel); the oldest of each first.
+    const auto rank = [](const Connection* c) {
+        return c->answered == 0 ? 0 : c->last_refused ? 1 : 2;
+    };
+    Connection* victim = nullptr;
     for (Connection* c : connections_)
         if (!c->shut && (c->reading_body || !c->in_request) &&
             (address.empty() || c->address == address) &&
-            (!oldest || c->phase_start < oldest->phase_start))
-            oldest = c;
-    if (!oldest) return false;
-    oldest->shut = true;
+            (!victim || rank(c) < rank(victim) ||
+             (rank(c) == rank(victim) && c->phase_start < victim->phase_start)))
+            victim = c;
+    if (!victim) return false;
+    victim->shut = true;
     // The socket stays open (libmicrohttpd closes it, seeing the end): no descriptor reuse race.
-    ::shutdown(oldest->fd, SHUT_RDWR);
+    ::shutdown(victim->fd, SHUT_RDWR);
     return true;
 }
 
@@ -346,6 +355,8 @@ void HttpServer::completed_cb(void* self, MHD_Connection*, void** exchange,
         std::lock_guard lock(server.connections_mutex_);
         ex->connection->in_request = ex->connection->reading_body = false;
         ex->connection->phase_start = Clock::now();
+        ++ex->connection->answered;
+        ex->connection->last_refused = !ex->answered || ex->res.status >= 400;
     }
 }
 

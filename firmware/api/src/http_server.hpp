@@ -4,9 +4,10 @@
 // bounded by design (design.md, "Hostile clients"):
 //  - one event-driven network thread (epoll): a slow or idle client costs a socket and a few
 //    KB, never a thread;
-//  - connections capped in total and per client address; when full, the oldest connection that
-//    has not sent a whole request yet (an idle or slow one) is closed for the new one, so that
-//    a flood of idle sockets from the panel's own address cannot lock the operator out;
+//  - connections capped in total and per client address; when full, a connection with no
+//    request under way is closed for the new one (one that never sent a whole request first,
+//    then one last refused, then a keep-alive one between good answers; oldest first), so that
+//    a flood from the panel's own address cannot lock the operator out;
 //  - deadlines for a request's line and headers (from the connection's start or its previous
 //    answer) and for its body, however slowly the bytes trickle in;
 //  - 32 KB per connection for the request line and headers (a longer one gets 414 or 431);
@@ -75,9 +76,9 @@ class HttpServer {
     void housekeep();
     void enforce_deadlines(Clock::time_point now);
     void feed_streams(bool ending);
-    // Closes the oldest connection (of `address`, or of any when empty) that has no request
-    // under way; false when there is none.
-    bool evict_oldest_idle(const std::string& address);
+    // Closes a connection (of `address`, or of any when empty) that has no request under way,
+    // the likeliest hostile first; false when there is none.
+    bool evict_idle(const std::string& address);
 
     const Router& router_;
     Hooks hooks_;
