@@ -147,11 +147,12 @@ bool HttpServer::accept(const std::string& address) {
 }
 
 bool HttpServer::evict_idle(const std::string& address) {
-    // Who goes first: a connection that never sent a whole request (an idle or slow one: the
-    // classic flood), then one whose last answer was a refusal, then a client's keep-alive
+    // Who goes first: a connection kept open after a refusal (a flood of requests the API
+    // turned down), then one that never sent a whole request (an idle or slow one: the classic
+    // flood; a new client's request may be on its way, so not first), then a keep-alive
     // connection between good answers (the operator's panel); the oldest of each first.
     const auto rank = [](const Connection* c) {
-        return c->answered == 0 ? 0 : c->last_refused ? 1 : 2;
+        return c->answered > 0 && c->last_refused ? 0 : c->answered == 0 ? 1 : 2;
     };
     Connection* victim = nullptr;
     for (Connection* c : connections_)

@@ -5,9 +5,9 @@
 //  - one event-driven network thread (epoll): a slow or idle client costs a socket and a few
 //    KB, never a thread;
 //  - connections capped in total and per client address; when full, a connection with no
-//    request under way is closed for the new one (one that never sent a whole request first,
-//    then one last refused, then a keep-alive one between good answers; oldest first), so that
-//    a flood from the panel's own address cannot lock the operator out;
+//    request under way is closed for the new one (one kept open after a refusal first, then
+//    one that never sent a whole request, then a keep-alive one between good answers; oldest
+//    first), so that a flood from the panel's own address cannot lock the operator out;
 //  - deadlines for a request's line and headers (from the connection's start or its previous
 //    answer) and for its body, however slowly the bytes trickle in;
 //  - 32 KB per connection for the request line and headers (a longer one gets 414 or 431);

@@ -37,8 +37,8 @@ struct SignInLimits {
 
 // What any one client may make the HTTP server spend ([api] in the config; http_server.hpp).
 struct ServerLimits {
-    int connections = 256;             // open at once, all clients
-    int connections_per_address = 64;  // from one client address
+    int connections = 512;              // open at once, all clients
+    int connections_per_address = 128;  // from one client address
     // A request's line and headers must have arrived this long after the connection opened
     // (or its previous answer went out), and its body this long after its headers.
     std::chrono::seconds header_timeout{10};
