@@ -299,7 +299,29 @@ std::string DaemonApi::wall_png(int tiles, int max_side) {
 }
 
 json DaemonApi::designs() {
-    return files_in(config_.storage.designs, {".tjmap"});
+    json list = files_in(config_.storage.designs, {".tjmap"});
+    for (json& d : list)
+        if (const auto dpi = design_dpi(d["path"].get<std::string>())) d["dpi"] = *dpi;
+    return list;
+}
+
+std::optional<double> DaemonApi::design_dpi(const std::string& path) {
+    // Loading a map takes a while: each file's dpi is read once per version of the file.
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    const auto mtime = fs::last_write_time(path, ec);
+    if (ec) return std::nullopt;
+    std::lock_guard lock(design_dpi_mutex_);
+    auto& known = design_dpi_[path];
+    if (!known.read || known.size != size || known.mtime != mtime) {
+        try {
+            const double dpi = synth::load_texture_map(path).build.dpi;
+            known = {size, mtime, dpi > 0 ? std::optional<double>(dpi) : std::nullopt, true};
+        } catch (const std::exception&) {
+            return std::nullopt;  // not a map this daemon can print; submit says why
+        }
+    }
+    return known.dpi;
 }
 
 json DaemonApi::profiles() {

@@ -4,7 +4,10 @@
 // controller for state and commands, TilePreviews for the panel's pictures.
 #include <chrono>
 #include <deque>
+#include <filesystem>
+#include <map>
 #include <mutex>
+#include <optional>
 
 #include "controller.hpp"
 #include "daemon_config.hpp"
@@ -39,6 +42,8 @@ class DaemonApi : public api::ApiBackend {
   private:
     double rate_tiles_per_min(std::int64_t printed);
     std::optional<jobs::Job> wall_job(const LineSnapshot& s);
+    // The dpi a design file is built for; nothing when it records none or is no map.
+    std::optional<double> design_dpi(const std::string& path);
 
     DaemonConfig config_;
     Controller& controller_;
@@ -46,6 +51,14 @@ class DaemonApi : public api::ApiBackend {
     jobs::JobStore store_;
     std::deque<std::pair<std::chrono::steady_clock::time_point, std::int64_t>> rate_samples_;
     TilePreviews previews_;
+    struct DesignDpi {
+        std::uintmax_t size = 0;
+        std::filesystem::file_time_type mtime{};
+        std::optional<double> dpi;
+        bool read = false;
+    };
+    std::mutex design_dpi_mutex_;
+    std::map<std::string, DesignDpi> design_dpi_;
 };
 
 }  // namespace tilejet::daemon

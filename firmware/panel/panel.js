@@ -168,8 +168,19 @@ async function loadChoices() {
   try {
     const [designs, profiles] = await Promise.all([api("GET", "/api/designs"), api("GET", "/api/profiles")]);
     const design = $("f-design");
-    design.replaceChildren(...designs.map((d) => new Option(d.name, d.name)));
+    // A design prints at its own resolution: shown beside its name and put in the form.
+    design.replaceChildren(...designs.map((d) => {
+      const o = new Option(d.dpi ? `${d.name} (${d.dpi} dpi)` : d.name, d.name);
+      o.dataset.dpi = d.dpi || "";
+      return o;
+    }));
     if (designs.length === 0) design.append(new Option("(no designs in [storage] designs)", ""));
+    const takeDpi = () => {
+      const chosen = design.selectedOptions[0];
+      $("f-dpi").value = chosen ? chosen.dataset.dpi || "" : "";
+    };
+    design.onchange = takeDpi;
+    takeDpi();
     const profile = $("f-profile");
     profile.replaceChildren(new Option("line default", ""),
                             ...profiles.map((p) => new Option(p.name, p.name)));

@@ -193,6 +193,7 @@ TEST_CASE("an engineer adds a design; an operator may not", "[api][daemon][desig
     REQUIRE(designs.size() == 1);
     CHECK(designs[0]["name"] == "marble.tjmap");
     CHECK(designs[0]["bytes"] == map.size());
+    CHECK(designs[0]["dpi"] == 20);  // what the panel's job form shows and takes
     // A job of the uploaded design is accepted.
     std::tie(status, body) =
         daemon.request("POST", "/api/jobs",

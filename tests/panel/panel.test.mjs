@@ -123,7 +123,11 @@ ${entry}`);
 
     // Queue a job from the form, with the design the daemon lists.
     await page.waitForFunction(() => document.querySelectorAll("#f-design option[value$='.tjmap']").length > 0);
-    await page.selectOption("#f-design", { label: path.basename(args.map) });
+    await page.selectOption("#f-design", { value: path.basename(args.map) });
+    // The design's resolution is shown beside its name and taken into the form.
+    const label = await page.$eval("#f-design", (s) => s.selectedOptions[0].textContent);
+    if (!/\(\d+ dpi\)$/.test(label)) throw new Error(`design shown without its dpi: ${label}`);
+    if (!(Number(await page.inputValue("#f-dpi")) > 0)) throw new Error("job form took no dpi from the design");
     await page.fill("#f-seed", "7");
     await page.fill("#f-count", "400");
     await page.fill("#f-tile", "200x200");
