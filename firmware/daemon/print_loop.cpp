@@ -28,8 +28,8 @@ PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
       gpio_(drivers::make_gpio(config.drivers)),
       heads_(drivers::make_head_sink(config.drivers)),
       store_(config.storage.database),
-      render_(config.render.threads, config.render.queue_tiles) {
-    speed_ = print_.speed_mm_s;
+      render_(config.render.threads, config.render.queue_tiles),
+      governor_(config.print) {
     seq_ = store_.last_seq();
     // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
     // before the first send.
@@ -90,10 +90,8 @@ void PrintLoop::turn() {
             print_ = *std::exchange(reload_, std::nullopt);
             // A lower top speed applies to a running conveyor at once; a higher one is reached
             // step by step while render-ahead keeps up (print_turn).
-            if (speed_ > print_.speed_mm_s) {
-                speed_ = print_.speed_mm_s;
-                if (run_commanded_) line_->set_speed(std::uint16_t(speed_));
-            }
+            if (governor_.reload(print_) && run_commanded_)
+                line_->set_speed(std::uint16_t(governor_.speed()));
             log_line("reloaded [print]: speed " + std::to_string(print_.speed_mm_s) + " mm/s");
         }
     }
@@ -240,7 +238,7 @@ bool PrintLoop::poll_line() {
 }
 
 double PrintLoop::fastest_asked() const {
-    return std::max<double>({double(print_.speed_mm_s), double(speed_), 1.0});
+    return governor_.fastest_asked();
 }
 
 std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived,
@@ -329,9 +327,8 @@ void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_
             // did not keep up.
             if (print_enable && job_ && !draining_ && !stop_job_ &&
                 !store_.upcoming(*job_, 1).empty()) {
-                render_reason_ = "render behind: line tile " + std::to_string(line_tile) +
-                                 " passed with no separations ready";
-                adjust_speed();
+                adjust_speed("render behind: line tile " + std::to_string(line_tile) +
+                             " passed with no separations ready");
             }
         }
     }
@@ -476,21 +473,20 @@ void PrintLoop::print_turn() {
         if (conveyor_stopped() && !resync()) return;
         if (!mirror_.certain()) return;
     }
-    if (render_wait_ && !conveyor_stopped()) {
-        park(render_reason_, LineStatus::paused);
+    if (governor_.stopped_for_render() && !conveyor_stopped()) {
+        park(governor_.reason(), LineStatus::paused);
         return;
     }
     if (conveyor_stopped()) {
         // Nothing can reach the heads: fill them, then start.
-        if (render_wait_) {
-            // Half the queue, or what is left of the job if that is less.
-            const int need = std::min(std::max(1, render_.capacity() / 2), render_.wanted());
+        if (governor_.stopped_for_render()) {
+            const int need = SpeedGovernor::ready_to_restart(render_.capacity(), render_.wanted());
             if (render_.ready() < need) {
-                state_.set(LineStatus::paused, render_reason_ + "; conveyor stopped until " +
+                state_.set(LineStatus::paused, governor_.reason() + "; conveyor stopped until " +
                                                    std::to_string(need) + " tiles are rendered");
                 return;
             }
-            render_wait_ = false;
+            governor_.restarting();
         }
         while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ && send_next(false)) {
         }
@@ -514,33 +510,34 @@ void PrintLoop::print_turn() {
            Clock::now() < deadline(mirror_.size()) && send_next(true)) {
     }
     if (!mirror_.certain()) return;
-    if (render_.ready() >= render_.capacity() && speed_ < print_.speed_mm_s &&
-        Clock::now() - last_speed_change_ > 2s) {
-        speed_ = std::min(print_.speed_mm_s, speed_ + std::max(1, speed_ / 4));
-        line_->set_speed(std::uint16_t(speed_));
-        last_speed_change_ = Clock::now();
-        log_line("render-ahead full: conveyor back up to " + std::to_string(speed_) + " mm/s");
-        if (speed_ == print_.speed_mm_s) render_reason_.clear();
+    if (render_.ready() >= render_.capacity() && governor_.render_full(Clock::now())) {
+        line_->set_speed(std::uint16_t(governor_.speed()));
+        log_line("render-ahead full: conveyor back up to " + std::to_string(governor_.speed()) +
+                 " mm/s");
     }
-    state_.set(LineStatus::printing, render_reason_.empty()
+    state_.set(LineStatus::printing, governor_.reason().empty()
                                          ? job_->name()
-                                         : job_->name() + ", slowed to " + std::to_string(speed_) +
-                                               " mm/s: " + render_reason_);
+                                         : job_->name() + ", slowed to " +
+                                               std::to_string(governor_.speed()) +
+                                               " mm/s: " + governor_.reason());
 }
 
-void PrintLoop::adjust_speed() {
-    if (speed_ > print_.min_speed_mm_s) {
-        speed_ = std::max(print_.min_speed_mm_s, speed_ * 7 / 10);
-        try {
-            line_->set_speed(std::uint16_t(speed_));
-        } catch (const std::exception& e) {
-            log_line("could not slow the conveyor: " + std::string(e.what()));
-        }
-        last_speed_change_ = Clock::now();
-        log_line(render_reason_ + ": conveyor slowed to " + std::to_string(speed_) + " mm/s");
-    } else if (!render_wait_) {
-        render_wait_ = true;  // print_turn stops the conveyor
-        log_line(render_reason_ + ": at the slowest speed; stopping the conveyor");
+void PrintLoop::adjust_speed(const std::string& reason) {
+    switch (governor_.render_behind(reason, Clock::now())) {
+        case SpeedGovernor::Change::slower:
+            try {
+                line_->set_speed(std::uint16_t(governor_.speed()));
+            } catch (const std::exception& e) {
+                log_line("could not slow the conveyor: " + std::string(e.what()));
+            }
+            log_line(reason + ": conveyor slowed to " + std::to_string(governor_.speed()) +
+                     " mm/s");
+            break;
+        case SpeedGovernor::Change::stop:  // print_turn stops the conveyor
+            log_line(reason + ": at the slowest speed; stopping the conveyor");
+            break;
+        case SpeedGovernor::Change::none:
+            break;
     }
 }
 
@@ -551,7 +548,7 @@ void PrintLoop::start_conveyor() {
         state_.set(LineStatus::estop, e.what());
         return;
     }
-    line_->set_speed(std::uint16_t(speed_));
+    line_->set_speed(std::uint16_t(governor_.speed()));
     line_->run();
     run_commanded_ = true;
     // Where the belt stands is unknown: a tile may reach the heads right away.
@@ -563,16 +560,16 @@ PrintLoop::Clock::duration PrintLoop::under_heads() const {
     // From its leading edge until its trailing edge has passed: tile_length / speed, at the
     // slowest speed the line may be running.
     const double speed = std::max(
-        1.0,
-        std::min<double>(speed_, line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s : speed_));
+        1.0, std::min<double>(governor_.speed(), line_state_.speed_mm_s > 0 ? line_state_.speed_mm_s
+                                                                            : governor_.speed()));
     return std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(config_.drivers.line.tile_length_mm / speed));
 }
 
 PrintLoop::Clock::duration PrintLoop::pitch_time() const {
     // At the fastest speed the line may run, so that it is never longer than the real one.
-    const double fastest = std::max<double>(
-        {double(print_.speed_mm_s), double(speed_), double(line_state_.speed_mm_s), 1.0});
+    const double fastest =
+        std::max<double>({governor_.fastest_asked(), double(line_state_.speed_mm_s)});
     return std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(config_.drivers.line.tile_pitch_mm / fastest));
 }

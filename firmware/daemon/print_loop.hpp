@@ -24,6 +24,7 @@
 #include "head_mirror.hpp"
 #include "line_state.hpp"
 #include "render_ahead.hpp"
+#include "speed_governor.hpp"
 #include "tilejet/drivers/gpio.hpp"
 #include "tilejet/drivers/head_sink.hpp"
 #include "tilejet/drivers/line_control.hpp"
@@ -77,7 +78,8 @@ class PrintLoop {
     void start_conveyor();
     void check_job_done();
     void end_job(jobs::JobStatus status, const std::string& message, const std::string& log);
-    void adjust_speed();
+    // Rendering fell behind: slower, or stopped (the governor says which).
+    void adjust_speed(const std::string& reason);
     Clock::duration pitch_time() const;
     Clock::duration under_heads() const;
     Clock::time_point deadline(size_t queued) const;
@@ -94,6 +96,7 @@ class PrintLoop {
     std::unique_ptr<drivers::HeadSink> heads_;
     jobs::JobStore store_;
     RenderAhead render_;
+    SpeedGovernor governor_;
     LineStateMachine state_;
 
     std::optional<jobs::Job> job_;
@@ -118,10 +121,6 @@ class PrintLoop {
     Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
     Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
     bool run_commanded_ = false;
-    int speed_ = 0;             // the speed the daemon asks for while printing
-    bool render_wait_ = false;  // conveyor stopped until render-ahead catches up
-    std::string render_reason_;
-    Clock::time_point last_speed_change_{};
 
     struct Printed {
         HeadEntry entry;
