@@ -182,6 +182,7 @@ bool PrintLoop::poll_line() {
     const bool enabled_at_read = gpio_->output(GpioOutput::print_enable);
     try {
         line_state_ = line_->read_state();
+        last_read_ = Clock::now() - start;
     } catch (const LinkError& e) {
         on_link_lost(e.what());
         return false;
@@ -280,7 +281,12 @@ std::optional<std::string> PrintLoop::counter_stuck() const {
         std::int64_t(std::ceil(std::max(0.0, line.heads_mm - line.photo_eye_mm) /
                                std::max(1.0, line.tile_pitch_mm))) +
         1;
-    const std::int64_t allowed = on_the_way + 2;
+    // A slow read (a PLC answering late, within the timeout) gives a counter older than the
+    // eye's edges by as long as it took: the tiles that can pass meanwhile are allowed too (the
+    // soak's delayed replies once stopped the line for a counter that was only late).
+    const double late_tiles = std::chrono::duration<double>(last_read_).count() * fastest_asked() /
+                              std::max(1.0, line.tile_pitch_mm);
+    const std::int64_t allowed = on_the_way + 2 + std::lround(late_tiles);  // a quick read: 0
     if (eye_lead_ <= allowed) return std::nullopt;
     return "PLC tile counter stuck at " + std::to_string(counter_) + ": the photo-eye saw " +
            std::to_string(eye_lead_) + " tiles pass that it did not count (at most " +

@@ -118,6 +118,7 @@ class PrintLoop {
     // their way from the eye to the heads; more, and the counter is stuck.
     std::int64_t eye_lead_ = 0;
     std::optional<std::chrono::nanoseconds> eye_on_since_;  // the eye's rising edge
+    Clock::duration last_read_{};          // how long the last successful counter read took
     Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
     Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
     bool run_commanded_ = false;
