@@ -29,7 +29,8 @@ PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
       heads_(drivers::make_head_sink(config.drivers)),
       store_(config.storage.database),
       render_(config.render.threads, config.render.queue_tiles),
-      governor_(config.print) {
+      governor_(config.print),
+      counter_(config.drivers.line) {
     seq_ = store_.last_seq();
     // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
     // before the first send.
@@ -113,11 +114,11 @@ void PrintLoop::turn() {
         state_.set(LineStatus::estop, gpio_->estop_latched() ? "e-stop: release it and acknowledge"
                                                              : "e-stop chain open (PLC)");
         if (draining_) done_ = true;
-    } else if (counter_fault_) {
+    } else if (const auto& fault = counter_.latched_fault()) {
         // Held until the operator acknowledges: the PLC that lied once may lie again.
         if (line_state_.running) line_->stop();
         set_print_enable(false);
-        state_.set(LineStatus::faulted, *counter_fault_ + ": acknowledge to resync");
+        state_.set(LineStatus::faulted, *fault + ": acknowledge to resync");
         if (draining_) done_ = true;
     } else if (line_state_.fault_code != 0) {
         gpio_->set(GpioOutput::print_enable, false);
@@ -148,10 +149,9 @@ void PrintLoop::handle_commands() {
                 }
                 break;
             case Command::acknowledge:
-                if (counter_fault_) {
+                if (counter_.latched_fault()) {
                     log_line("operator: PLC reading fault acknowledged");
-                    counter_fault_.reset();
-                    counter_known_ = false;  // counted from the next reading on
+                    counter_.acknowledge();  // counted from the next reading on
                 }
                 try {
                     gpio_->acknowledge_estop();
@@ -168,7 +168,8 @@ void PrintLoop::handle_gpio_events(std::chrono::milliseconds wait) {
     auto event = gpio_->wait_event(wait);
     while (event) {
         if (event->input == GpioInput::estop && event->level) on_estop(event->timestamp);
-        if (event->input == GpioInput::photo_eye) on_photo_eye(event->level, event->timestamp);
+        if (event->input == GpioInput::photo_eye)
+            counter_.photo_eye(event->level, event->timestamp, fastest_asked());
         event = gpio_->wait_event(0ms);
     }
 }
@@ -182,7 +183,6 @@ bool PrintLoop::poll_line() {
     const bool enabled_at_read = gpio_->output(GpioOutput::print_enable);
     try {
         line_state_ = line_->read_state();
-        last_read_ = Clock::now() - start;
     } catch (const LinkError& e) {
         on_link_lost(e.what());
         return false;
@@ -190,29 +190,20 @@ bool PrintLoop::poll_line() {
         on_link_lost(e.what());
         return false;
     }
+    const Clock::duration took = Clock::now() - start;
     if (!link_up_) {
         link_up_ = true;
         log_line("PLC link up (tile counter " + std::to_string(line_state_.tile_counter) + ")");
     }
-    if (!counter_fault_)
-        if (const auto why = implausible_speed()) {
-            on_counter_fault(*why);
-            return true;
-        }
-    if (counter_fault_) {
-        // Nothing is counted until the operator acknowledges; then counting starts afresh.
-    } else if (!counter_known_) {
-        counter_known_ = true;
-        counter_ = line_state_.tile_counter;
-        earliest_next_ = start;
-        eye_lead_ = 0;  // the eye and the counter start even
-    } else if (line_state_.tile_counter != counter_) {
-        const std::uint32_t arrived = line_state_.tile_counter - counter_;  // wraps at 2^32
-        if (const auto why = implausible_arrivals(arrived, start - prev_poll_start_)) {
-            // Nothing is counted: which tiles passed, and with what ink, is unknown.
-            on_counter_fault(*why);
-            return true;
-        }
+    const bool was_known = counter_.known();
+    const CounterWatch::Verdict verdict = counter_.judge(
+        {line_state_.tile_counter, double(line_state_.speed_mm_s), start, took}, fastest_asked());
+    if (verdict.fault) {
+        on_counter_fault(*verdict.fault);
+        return true;
+    }
+    if (!was_known && counter_.known()) earliest_next_ = start;
+    if (verdict.arrived > 0) {
         const bool enabled = gpio_->output(GpioOutput::print_enable);
         if (enabled != enabled_at_poll_) {
             // Print-enable changed since the last poll (e-stop latch): whether these tiles
@@ -220,19 +211,11 @@ bool PrintLoop::poll_line() {
             mirror_.doubt();
             log_line("tiles reached the heads while print-enable changed: resync");
         } else {
-            on_arrivals(arrived, enabled, prev_poll_start_);
+            on_arrivals(verdict, enabled);
         }
         // The last of them came after the previous poll began; the next one is a pitch later.
-        earliest_next_ = prev_poll_start_ + arrived * pitch_time();
-        // A tile already between the eye and the heads when counting began was never seen.
-        eye_lead_ = std::max<std::int64_t>(0, eye_lead_ - std::int64_t(arrived));
+        earliest_next_ = verdict.since + verdict.arrived * pitch_time();
     }
-    if (!counter_fault_ && counter_known_)
-        if (const auto why = counter_stuck()) {
-            on_counter_fault(*why);
-            return true;
-        }
-    prev_poll_start_ = start;
     enabled_at_poll_ = enabled_at_read;
     if (!line_state_.running) run_commanded_ = false;
     return true;
@@ -242,81 +225,19 @@ double PrintLoop::fastest_asked() const {
     return governor_.fastest_asked();
 }
 
-std::optional<std::string> PrintLoop::implausible_arrivals(std::uint32_t arrived,
-                                                           Clock::duration elapsed) const {
-    const std::uint32_t before = counter_, now = line_state_.tile_counter;
-    if (now < before && before - now < (1u << 31))
-        return "PLC tile counter went back from " + std::to_string(before) + " to " +
-               std::to_string(now) + " (PLC restart?)";
-    // At most one tile a pitch at half again the fastest speed the daemon runs the line, and
-    // two for the tile already under the eye when the last poll began.
-    const double fastest = 1.5 * fastest_asked();
-    const double pitch_s = config_.drivers.line.tile_pitch_mm / fastest;
-    const double possible = std::chrono::duration<double>(elapsed).count() / pitch_s + 2;
-    if (double(arrived) > possible)
-        return "PLC tile counter jumped from " + std::to_string(before) + " to " +
-               std::to_string(now) + ": " + std::to_string(arrived) + " tiles in " +
-               std::to_string(
-                   std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count()) +
-               " ms, at most " + std::to_string(std::uint64_t(possible)) + " can have passed";
-    return std::nullopt;
-}
-
-void PrintLoop::on_photo_eye(bool level, std::chrono::nanoseconds at) {
-    if (level) {
-        eye_on_since_ = at;
-        return;
-    }
-    if (!eye_on_since_) return;
-    const double shortest_s = 0.5 * config_.drivers.line.tile_length_mm / (1.5 * fastest_asked());
-    if (std::chrono::duration<double>(at - *eye_on_since_).count() >= shortest_s) ++eye_lead_;
-    eye_on_since_.reset();
-}
-
-std::optional<std::string> PrintLoop::counter_stuck() const {
-    // The tiles that fit between the eye and the heads, one more for the tile at each, and two
-    // for the moments between the eye's edge and the counter's poll.
-    const auto& line = config_.drivers.line;
-    const std::int64_t on_the_way =
-        std::int64_t(std::ceil(std::max(0.0, line.heads_mm - line.photo_eye_mm) /
-                               std::max(1.0, line.tile_pitch_mm))) +
-        1;
-    // A slow read (a PLC answering late, within the timeout) gives a counter older than the
-    // eye's edges by as long as it took: the tiles that can pass meanwhile are allowed too (the
-    // soak's delayed replies once stopped the line for a counter that was only late).
-    const double late_tiles = std::chrono::duration<double>(last_read_).count() * fastest_asked() /
-                              std::max(1.0, line.tile_pitch_mm);
-    const std::int64_t allowed = on_the_way + 2 + std::lround(late_tiles);  // a quick read: 0
-    if (eye_lead_ <= allowed) return std::nullopt;
-    return "PLC tile counter stuck at " + std::to_string(counter_) + ": the photo-eye saw " +
-           std::to_string(eye_lead_) + " tiles pass that it did not count (at most " +
-           std::to_string(allowed) + " can be on their way to the heads)";
-}
-
-std::optional<std::string> PrintLoop::implausible_speed() const {
-    // Half again the fastest speed the daemon ever asks for, and some slack for a conveyor that
-    // overshoots when it starts; the PLC's own setpoint is a reading too, so it does not count.
-    const double asked = fastest_asked();
-    const double limit = 1.5 * asked + 50;
-    if (line_state_.speed_mm_s <= limit) return std::nullopt;
-    return "PLC speed reading " + std::to_string(line_state_.speed_mm_s) +
-           " mm/s is beyond anything the line was asked for (at most " +
-           std::to_string(int(asked)) + " mm/s)";
-}
-
 void PrintLoop::on_counter_fault(const std::string& why) {
     set_print_enable(false);
     line_->stop();
     run_commanded_ = false;
     // What the heads printed while the counter lied is unknown: resync before printing again.
     mirror_.doubt();
-    counter_fault_ = why;
     log_line(why + ": conveyor stopped, print-enable low; acknowledge to resync");
 }
 
-void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound) {
-    for (std::uint32_t i = 0; i < count; ++i) {
-        const std::int64_t line_tile = std::int64_t(counter_) + i;
+void PrintLoop::on_arrivals(const CounterWatch::Verdict& verdict, bool print_enable) {
+    const Clock::time_point lower_bound = verdict.since;
+    for (std::uint32_t i = 0; i < verdict.arrived; ++i) {
+        const std::int64_t line_tile = std::int64_t(verdict.first_line_tile) + i;
         if (const auto e = print_enable ? mirror_.arrived() : std::nullopt) {
             ++line_printed_;
             if (!e->is_tile()) {
@@ -338,7 +259,6 @@ void PrintLoop::on_arrivals(std::uint32_t count, bool print_enable, Clock::time_
             }
         }
     }
-    counter_ += count;
 }
 
 void PrintLoop::set_print_enable(bool on) {
@@ -355,20 +275,19 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         // may already have changed the state, so the state cannot say (the soak found a
         // printed tile taken for unprinted, then printed again).
         line_->stop();
-        if (counter_known_ && !counter_fault_ && st.tile_counter != counter_) {
-            const std::uint32_t arrived = st.tile_counter - counter_;
-            line_state_.tile_counter = st.tile_counter;
-            if (const auto why = implausible_arrivals(arrived, Clock::now() - prev_poll_start_))
-                on_counter_fault(*why);
-            else
-                on_arrivals(arrived, enabled_at_poll_, prev_poll_start_);
+        if (counter_.known()) {
+            const CounterWatch::Verdict verdict = counter_.judge(
+                {st.tile_counter, double(st.speed_mm_s), Clock::now(), {}}, fastest_asked());
+            if (verdict.fault)
+                on_counter_fault(*verdict.fault);
+            else if (verdict.arrived > 0)
+                on_arrivals(verdict, enabled_at_poll_);
         }
-        counter_ = st.tile_counter;
         line_state_ = st;
         enabled_at_poll_ = gpio_->output(GpioOutput::print_enable);
     } catch (const std::exception& e) {
         mirror_.doubt();
-        counter_known_ = false;
+        counter_.forget();
         log_line("e-stop: PLC not reachable (" + std::string(e.what()) + "); resync after it");
     }
     const Clock::time_point estop_at{std::chrono::duration_cast<Clock::duration>(at)};
@@ -394,7 +313,7 @@ void PrintLoop::on_link_lost(const std::string& why) {
         // Tiles may reach the heads unseen from now on: with print-enable low they pass
         // unprinted and the heads keep their buffer, but the last moments before are unknown.
         mirror_.doubt();
-        counter_known_ = false;
+        counter_.forget();
         link_up_ = false;
         run_commanded_ = false;
         state_.set(LineStatus::faulted, "PLC link down: " + why);
@@ -778,7 +697,7 @@ void PrintLoop::publish() {
     s.speed_setpoint_mm_s = line_state_.speed_setpoint_mm_s;
     s.speed_mm_s = line_state_.speed_mm_s;
     s.plc_fault_code = line_state_.fault_code;
-    s.counter_fault = counter_fault_.has_value();
+    s.counter_fault = counter_.latched_fault().has_value();
     s.tile_counter = line_state_.tile_counter;
     s.heads_queue = int(mirror_.size());
     s.rendered_ahead = render_.ready();

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "controller.hpp"
+#include "counter_watch.hpp"
 #include "daemon_config.hpp"
 #include "head_mirror.hpp"
 #include "line_state.hpp"
@@ -48,20 +49,12 @@ class PrintLoop {
     void handle_commands();
     void handle_gpio_events(std::chrono::milliseconds wait);
     bool poll_line();
-    // Why `arrived` tiles since the last poll, `elapsed` ago, cannot be true, or nothing.
-    std::optional<std::string> implausible_arrivals(std::uint32_t arrived,
-                                                    Clock::duration elapsed) const;
     // The fastest speed the daemon asks the conveyor for (at least 1 mm/s): what the PLC's
     // readings are judged against.
     double fastest_asked() const;
-    // A measured speed beyond anything the line was asked for: the sensor or the PLC lies.
-    std::optional<std::string> implausible_speed() const;
+    // The counter watch latched a fault: stop the conveyor, print-enable low, resync later.
     void on_counter_fault(const std::string& why);
-    // The photo-eye's edges: a pulse as long as a tile takes to pass, at half the fastest speed
-    // and more, is a tile (shorter ones are glitches).
-    void on_photo_eye(bool level, std::chrono::nanoseconds at);
-    std::optional<std::string> counter_stuck() const;
-    void on_arrivals(std::uint32_t count, bool print_enable, Clock::time_point lower_bound);
+    void on_arrivals(const CounterWatch::Verdict& verdict, bool print_enable);
     void on_estop(std::chrono::nanoseconds at);
     void on_link_lost(const std::string& why);
     void on_heads_lost(std::size_t count);
@@ -108,19 +101,11 @@ class PrintLoop {
     bool stop_job_ = false;   // the operator's stop: cancel the job once its tiles are out
     bool link_up_ = false;
     drivers::LineState line_state_;
-    bool counter_known_ = false;
     bool enabled_at_poll_ = false;  // print-enable when the last poll read the counter
-    std::uint32_t counter_ = 0;
-    // Set when the tile counter went back or jumped further than tiles can travel: the line
-    // stays stopped until the operator acknowledges.
-    std::optional<std::string> counter_fault_;
-    // Tiles the photo-eye saw pass that the PLC's counter has not counted yet: a few are on
-    // their way from the eye to the heads; more, and the counter is stuck.
-    std::int64_t eye_lead_ = 0;
-    std::optional<std::chrono::nanoseconds> eye_on_since_;  // the eye's rising edge
-    Clock::duration last_read_{};          // how long the last successful counter read took
-    Clock::time_point prev_poll_start_{};  // start of the last poll, which saw counter_
-    Clock::time_point earliest_next_{};    // the next tile cannot reach the heads before this
+    // The PLC's tile counter as far as it can be believed; a fault it latched keeps the line
+    // stopped until the operator acknowledges.
+    CounterWatch counter_;
+    Clock::time_point earliest_next_{};  // the next tile cannot reach the heads before this
     bool run_commanded_ = false;
 
     struct Printed {
