@@ -164,11 +164,13 @@ void add_map_commands(CLI::App& app) {
     b->add_option("--config", build->config,
                   "config file whose [render] dpi is the default --dpi (default "
                   "config/tilejet.toml)");
-    b->add_option("--cell", build->params.cell_size, "cell size in px (default 128)");
+    b->add_option("--cell", build->params.cell_size,
+                  "cell size in px (default: four of the exemplar's largest structures, 256 to 320 "
+                  "px, at most the exemplar's side)");
     b->add_option("--corner-colours", build->params.corner_colours,
                   "corner colours K: K^4 cell images that meet seamlessly whatever the hash "
                   "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
-                  "(default 3)");
+                  "(default 2)");
     b->add_option("--patches", build->params.patches,
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,

@@ -250,11 +250,6 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     check_params(params, input);
     const int threads = params.threads > 0 ? params.threads
                                            : int(std::max(1u, std::thread::hardware_concurrency()));
-    // Cells sized to the stone: three of its largest structures across (grain.hpp).
-    const double grain = params.cell_size ? 0 : grain_size(input);
-    const int square = params.cell_size
-                           ? params.cell_size
-                           : std::min(cell_side_for_grain(grain), std::min(input.cols, input.rows));
     const int corner_colours = params.corner_colours;
     const double active_per_cell = params.active_per_cell > 0
                                        ? params.active_per_cell
@@ -279,12 +274,21 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     }
     const cv::Mat exemplar =
         params.colour_gain == 1 ? input : apply_colour_gain(input, *detected, params.colour_gain);
+    // Cells sized to the stone: a few of its largest structures across (grain.hpp), at most
+    // the exemplar's smaller side (a source twice the cell is quilted from it then); fewer on a
+    // lattice, which cells then follow.
+    const double grain = params.cell_size ? 0 : grain_size(input);
+    const auto cell_side = [&](bool on_lattice) {
+        return params.cell_size ? params.cell_size
+                                : std::min(cell_side_for_grain(grain, on_lattice),
+                                           std::min(input.cols, input.rows));
+    };
     std::optional<LatticeTranslations> lattice;
-    cv::Size cell_size(square, square);
+    cv::Size cell_size(cell_side(false), cell_side(false));
     if (params.lattice == BuildParams::Lattice::Auto) {
         if (detected->kind != LatticeKind::Stochastic) {
             LatticeTranslations translations(*detected);
-            if (auto rect = translations.cell_size(square, exemplar.size())) {
+            if (auto rect = translations.cell_size(cell_side(true), exemplar.size())) {
                 lattice = translations;
                 cell_size = *rect;
             }

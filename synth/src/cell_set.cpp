@@ -20,11 +20,14 @@ enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream };
 constexpr int kSearchWindow = 384;
 // Each block takes the best seam of this many best-matching windows.
 constexpr size_t kCutCandidates = 6;
-// Images are made this many at a time (see the constructor).
-constexpr size_t kImageBatch = 8;
+// Images are made this many at a time (see the constructor): images of one batch do not see
+// each other's blocks, and with 16 images in batches of 8, the demo design's images took the
+// same least-used source over and over (periodicity 1.26, 1.07 in batches of 2).
+constexpr size_t kImageBatch = 2;
 // Copying a source pixel once more costs this share of the source's variance per overlap pixel
 // in the block search: 0.1 still left flat brown bands of strip round marble's cells, 0.5 keeps
-// its veins and its colours in every part of the set.
+// its veins and its colours in every part of the set (1.5 made the demo design's periodicity
+// 1.39 against 1.07, and its texture energy no better).
 constexpr double kUsageCost = 0.5;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
@@ -85,11 +88,16 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     if (k_ < 2) throw SynthError("a cell set needs at least 2 corner colours");
     const int side = std::min(cw_, ch_);
     // Measured on the corpus by eye and by texture energy both ways (texture_energy.hpp):
-    //  - cells are quilted with blocks of half a cell overlapping by half a block, so that cuts
-    //    have room to find where blocks agree. Quarter-cell blocks chopped veins and grains
-    //    into squares; half-cell blocks used to repeat the same few best matches in cell after
-    //    cell (periodicity 2.6 on the demo design), which the usage cost below now prevents;
-    //  - strips, thin, are quilted with blocks of a quarter cell, overlaps of a quarter block;
+    //  - every seam costs: an 8 px neighbourhood across a cut is nowhere in the exemplar, and
+    //    a heat map of that distance over a render shows nothing but the cuts. So cells are
+    //    quilted with blocks of three quarters of the cell each way, overlapping by a quarter
+    //    of a block: two blocks across, where blocks of half a cell overlapping by half a block
+    //    made three, and a seam every 40 px (gravel 1.77 times quilting's texture energy, 1.70
+    //    with these blocks; limestone 1.86, 1.71). Quarter-cell blocks chopped veins and grains
+    //    into squares. The usage cost below keeps large blocks from repeating the same few
+    //    best matches in cell after cell;
+    //  - a strip is one block, its corner cores aside: strips quilted from blocks of a quarter
+    //    cell put a cut across every cell border every 24 px (gravel 1.68 against 1.70);
     //  - the frame is a tenth of the cell: with a sixteenth, the cuts of the two cells on
     //    either side of an edge ran a few pixels apart and drew a line of strip along every
     //    cell border; with an eighth, the strips (the same at one edge in K^2) were so much of
@@ -97,11 +105,20 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     //    its outer pixel is locked: the cells' own blocks cut into the rest;
     //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
     //    round as squares, the same square at a third of all vertices.
-    block_ = std::max(8, side / 2);
-    overlap_ = std::max(2, block_ / 2);
-    strip_block_ = std::max(8, side / 4);
-    strip_overlap_ = std::max(2, strip_block_ / 4);
+    if (params.lattice) {
+        // On a lattice copies move only by lattice translations: the cut needs the room of
+        // blocks half a cell across overlapping by half a block to follow a course or a grout
+        // line (with the larger blocks a wall of courses kept 0.796 of its course continuity,
+        // under the 0.8 it keeps with these).
+        block_ = cv::Size(std::max(8, side / 2), std::max(8, side / 2));
+        overlap_ = std::max(2, side / 4);
+    } else {
+        block_ = cv::Size(std::max(8, cw_ * 3 / 4), std::max(8, ch_ * 3 / 4));
+        overlap_ = std::max(2, std::min(block_.width, block_.height) / 4);
+    }
     w_ = std::max(3, side / 10);
+    strip_block_ = std::max(cw_, ch_) + 2 * w_;
+    strip_overlap_ = std::max(2, side / 16);
     c_ = std::max(2, w_ / 3);
     if (source_rgb.cols < cw_ + 2 * w_ + 2 || source_rgb.rows < ch_ + 2 * w_ + 2)
         throw SynthError("the source is too small for a cell set of this cell size");
@@ -247,11 +264,11 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
 }
 
 // Quilts the unknown pixels of `area` in raster order with blocks of about `block` px.
-void quilt_area(Canvas& canvas, const cv::Rect& area, int block, int overlap,
+void quilt_area(Canvas& canvas, const cv::Rect& area, cv::Size block, int overlap,
                 const cv::Mat& source_rgb, const cv::Mat& source_lab,
                 const LatticeTranslations* lattice, cv::Point origin, Rng& rng) {
     // A thin strip gets blocks as tall as itself, overlapping by at most half a block.
-    const int bh = std::min(block, area.height), bw = std::min(block, area.width);
+    const int bh = std::min(block.height, area.height), bw = std::min(block.width, area.width);
     const auto rows = block_spans(area.y, area.br().y, bh, std::min(overlap, bh / 2));
     const auto cols = block_spans(area.x, area.br().x, bw, std::min(overlap, bw / 2));
     for (const auto& [y0, y1] : rows)
@@ -307,8 +324,8 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     // The strip's top-left pixel lies (w, w) before its first vertex, a lattice point.
-    quilt_area(canvas, cv::Rect({0, 0}, size), strip_block_, strip_overlap_, source_rgb_,
-               source_lab_, params_.lattice, {-w_, -w_}, rng);
+    quilt_area(canvas, cv::Rect({0, 0}, size), {strip_block_, strip_block_}, strip_overlap_,
+               source_rgb_, source_lab_, params_.lattice, {-w_, -w_}, rng);
     placed = std::move(canvas.placed);
     return canvas.rgb;
 }

@@ -76,7 +76,8 @@ class CellSet {
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;
     CellSetParams params_;
-    int k_, cw_, ch_, w_, c_, block_, overlap_, strip_block_, strip_overlap_;
+    int k_, cw_, ch_, w_, c_, overlap_, strip_block_, strip_overlap_;
+    cv::Size block_;  // the blocks cells are quilted with
     double usage_weight_ = 0;
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's

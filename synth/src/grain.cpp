@@ -11,13 +11,13 @@ namespace tilejet::synth::detail {
 namespace {
 constexpr int kDirections = 64;
 constexpr double kGone = 0.1;  // correlation below this: no longer the same structure
-constexpr double kGrainsPerCell = 3;
-constexpr int kMinCell = 128, kMaxCell = 192, kCellStep = 32;
+constexpr int kCellStep = 32;
 }  // namespace
 
-int cell_side_for_grain(double grain) {
-    const int side = int(std::lround(kGrainsPerCell * grain / kCellStep)) * kCellStep;
-    return std::clamp(side, kMinCell, kMaxCell);
+int cell_side_for_grain(double grain, bool lattice) {
+    const double grains = lattice ? 3 : 4;
+    const int side = int(std::lround(grains * grain / kCellStep)) * kCellStep;
+    return lattice ? std::clamp(side, 128, 192) : std::clamp(side, 256, 320);
 }
 
 double grain_size(const cv::Mat& rgb) {

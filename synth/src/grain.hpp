@@ -11,14 +11,18 @@ namespace tilejet::synth::detail {
 // autocorrelation can still see). `rgb` CV_8UC3.
 double grain_size(const cv::Mat& rgb);
 
-// The default cell side for an exemplar whose structures are `grain` px: three of them, so a
-// cell holds whole veins, rounded to 32 px, from 128 to 192 px. Measured on the corpus (maps
-// with defaults, tilejet eval): marble's cells of 192 px brought its texture energy from 1.28
-// to 1.14 times quilting's, wood's of 160 from 1.03 to 0.92, slate's of 160 from 1.44 to 1.30;
-// but cells of 64 px for the fine designs (granite, gravel, terrazzo, setts: three grains are
-// 20 to 40 px) made it 1.3 to 1.5 times worse (a seam every few grains), so 128 is the least.
-// Cells of 256 px (the demo stone enlarged to 512 px) took 69 s to build on 2 cores, beyond the
-// 60 s a 512 px exemplar may take; 192 is the most until cell sets build faster.
-int cell_side_for_grain(double grain);
+// The default cell side for an exemplar whose structures are `grain` px: four of them, so a
+// cell holds whole veins, rounded to 32 px, from 256 to 320 px (and at most the exemplar's
+// side: build.cpp). Larger cells mean fewer seams, and seams are what texture energy counts
+// and what shows: with the cell sets of 2 corner colours, cells of 256 px against the 128 px
+// that fine designs had took gravel from 1.77 to 1.20 times quilting's texture energy and
+// limestone from 1.86 to 1.14, and the blocks of 128 px that showed on limestone's walls went.
+// (Earlier, cells of 64 px made fine designs 1.3 to 1.5 times worse: a seam every few grains.)
+// Coarse stones get more than 256 px, so a cell still holds a few of their structures.
+// On a `lattice` (bricks, courses, laid tiles) cells stay at three structures, 128 to 192 px:
+// there copies move only by lattice translations, so a source holds few distinct blocks, and
+// larger cells showed the cell's own pitch (a wall of courses in 176x199 px cells came out a
+// two-way lattice, where 128x133 px cells kept its courses).
+int cell_side_for_grain(double grain, bool lattice);
 
 }  // namespace tilejet::synth::detail
