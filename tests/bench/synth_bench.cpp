@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     {
         cv::Mat big;
         cv::resize(demo, big, {smoke ? 96 : 512, smoke ? 96 : 512}, 0, 0, cv::INTER_CUBIC);
-        for (const int corner_colours : {1, smoke ? 2 : 3}) {
+        for (const int corner_colours : {1, smoke ? 2 : BuildParams{}.corner_colours}) {
             BuildParams p;
             p.corner_colours = corner_colours;
             if (smoke) p.cell_size = 32, p.patches = 8, p.candidates = 64;
