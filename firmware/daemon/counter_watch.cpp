@@ -29,13 +29,13 @@ CounterWatch::Verdict CounterWatch::judge(const Reading& reading, double fastest
         return verdict;
     }
     if (reading.tile_counter != counter_) {
-        const std::uint32_t arrived = reading.tile_counter - counter_;  // wraps at 2^32
-        if (auto why = implausible_arrivals(reading.tile_counter, arrived,
-                                            reading.started - previous_, fastest_asked)) {
+        if (auto why = implausible_arrivals(reading.tile_counter, reading.started - previous_,
+                                            fastest_asked)) {
             // Nothing is counted: which tiles passed, and with what ink, is unknown.
             fault_ = verdict.fault = std::move(why);
             return verdict;
         }
+        const std::uint32_t arrived = reading.tile_counter - counter_;  // wraps at 2^32
         verdict.arrived = arrived;
         verdict.first_line_tile = counter_;
         verdict.since = previous_;
@@ -74,7 +74,6 @@ std::optional<std::string> CounterWatch::implausible_speed(double speed,
 }
 
 std::optional<std::string> CounterWatch::implausible_arrivals(std::uint32_t now,
-                                                              std::uint32_t arrived,
                                                               Clock::duration elapsed,
                                                               double fastest_asked) const {
     // A counter that went back by less than half its range went back; one that went on by more
@@ -87,6 +86,7 @@ std::optional<std::string> CounterWatch::implausible_arrivals(std::uint32_t now,
     const double fastest = 1.5 * std::max(1.0, fastest_asked);
     const double pitch_s = std::max(1.0, line_.tile_pitch_mm) / fastest;
     const double possible = std::max(0.0, seconds(elapsed)) / pitch_s + 2;
+    const std::uint32_t arrived = now - counter_;  // wraps at 2^32
     if (double(arrived) <= possible) return std::nullopt;
     return "PLC tile counter jumped from " + std::to_string(counter_) + " to " +
            std::to_string(now) + ": " + std::to_string(arrived) + " tiles in " +

@@ -42,8 +42,6 @@ class CounterWatch {
     // speed and more, is a tile (shorter ones are glitches).
     void photo_eye(bool level, std::chrono::nanoseconds at, double fastest_asked);
 
-    // Counting stops until acknowledge(): a fault found elsewhere (e-stop catch-up).
-    void fault(const std::string& why) { fault_ = why; }
     const std::optional<std::string>& latched_fault() const { return fault_; }
     // The operator acknowledged the fault: count from the next reading on.
     void acknowledge() { fault_.reset(), known_ = false; }
@@ -56,8 +54,7 @@ class CounterWatch {
 
   private:
     std::optional<std::string> implausible_speed(double speed, double fastest_asked) const;
-    std::optional<std::string> implausible_arrivals(std::uint32_t now, std::uint32_t arrived,
-                                                    Clock::duration elapsed,
+    std::optional<std::string> implausible_arrivals(std::uint32_t now, Clock::duration elapsed,
                                                     double fastest_asked) const;
     std::optional<std::string> stuck(double fastest_asked) const;
 
