@@ -74,19 +74,46 @@ int SimHeadSink::send(const TileSeparations& tile, std::chrono::milliseconds tim
     }
 }
 
-int SimHeadSink::held(std::chrono::milliseconds timeout) {
+std::string SimHeadSink::ask(const std::string& request, std::chrono::milliseconds timeout) {
     connect(timeout);
     try {
-        socket_->send_all("HELD?\n", timeout);
+        socket_->send_all(request + "\n", timeout);
         auto reply = socket_->read_line(timeout);
-        if (!reply || !reply->starts_with("HELD "))
-            throw std::runtime_error("sim heads: no answer to HELD? within " +
+        if (!reply)
+            throw std::runtime_error("sim heads: no answer to " + request + " within " +
                                      std::to_string(timeout.count()) + " ms");
-        return count_in(*reply, "HELD ");
+        return *reply;
     } catch (...) {
         disconnect();
         throw;
     }
+}
+
+int SimHeadSink::held(std::chrono::milliseconds timeout) {
+    const std::string reply = ask("HELD?", timeout);
+    try {
+        if (!reply.starts_with("HELD "))
+            throw std::runtime_error("sim heads: HELD? answered '" + reply.substr(0, 100) + "'");
+        return count_in(reply, "HELD ");
+    } catch (...) {
+        disconnect();  // out of step with the heads: the next exchange starts afresh
+        throw;
+    }
+}
+
+std::optional<bool> SimHeadSink::printed(const std::string& job_id, std::uint64_t tile_index,
+                                         std::chrono::milliseconds timeout) {
+    if (job_id.empty() || job_id.find_first_of(" \t\r\n") != std::string::npos)
+        throw std::invalid_argument("sim heads: job id '" + job_id +
+                                    "' must be non-empty and without whitespace");
+    const std::string request = "PRINTED? " + job_id + " " + std::to_string(tile_index);
+    const std::string reply = ask(request, timeout);
+    if (reply == "PRINTED yes") return true;
+    if (reply == "PRINTED no") return false;
+    if (reply == "PRINTED unknown") return std::nullopt;
+    disconnect();  // out of step with the heads: the next exchange starts afresh
+    throw std::runtime_error("sim heads: " + request + " answered '" + reply.substr(0, 100) +
+                             "'");
 }
 
 }  // namespace tilejet::drivers::sim

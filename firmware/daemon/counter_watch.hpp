@@ -8,6 +8,7 @@
 // arrivals. Every reading is judged here before a single tile is counted; a fault is latched
 // until the operator acknowledges, and counting then starts afresh from the next reading.
 // Pure and clock-free: the loop passes the times of its reads and the photo-eye's edges.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <optional>
@@ -47,6 +48,11 @@ class CounterWatch {
     void acknowledge() { fault_.reset(), known_ = false; }
     // The link was lost: what passed meanwhile is unknown; count from the next reading on.
     void forget() { known_ = false; }
+    // The heads' journal shows `tiles` printed that the counter never counted (stuck for a
+    // moment): they passed the photo-eye too, so the eye's lead no longer includes them.
+    void counted_by_heads(std::uint32_t tiles) {
+        eye_lead_ = std::max<std::int64_t>(0, eye_lead_ - std::int64_t(tiles));
+    }
 
     bool known() const { return known_; }
     std::uint32_t counter() const { return counter_; }

@@ -19,6 +19,14 @@ std::string ms_text(std::chrono::steady_clock::duration d) {
     return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count()) + " ms";
 }
 
+// The name and number a head entry goes to the heads under. A blank probe is no tile of the
+// job: it goes out under its own name, numbered by its sequence, so the heads' log never shows
+// it as a second print of tile 0.
+std::pair<std::string, std::uint64_t> heads_name(const HeadEntry& e) {
+    if (e.index < 0) return {"blank", std::uint64_t(-e.index)};
+    return {"job-" + std::to_string(e.job), std::uint64_t(e.index)};
+}
+
 }  // namespace
 
 PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
@@ -525,12 +533,8 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
     const std::int64_t seq = ++seq_;
     store_.mark_sending(entry.job, entry.index, seq);
     try {
-        // A blank probe is no tile of the job: it goes out under its own name, numbered by
-        // its sequence, so the heads' log never shows it as a second print of tile 0.
-        const bool blank = entry.index < 0;
-        heads_->send({blank ? std::string("blank") : "job-" + std::to_string(entry.job),
-                      std::uint64_t(blank ? -entry.index : entry.index), tile.bytes},
-                     print_.send_timeout);
+        const auto [name, index] = heads_name(entry);
+        heads_->send({name, index, tile.bytes}, print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
         store_.unmark_sending(entry.job, entry.index);
         return SendResult::busy;
@@ -565,7 +569,7 @@ bool PrintLoop::heads_hold_mirror() {
         return false;
     }
     if (held < int(mirror_.size())) {
-        on_heads_lost(mirror_.size() - size_t(held));
+        on_heads_short(mirror_.size() - size_t(held));
         return false;
     }
     if (held > int(mirror_.size())) {
@@ -577,17 +581,42 @@ bool PrintLoop::heads_hold_mirror() {
     return true;
 }
 
-void PrintLoop::on_heads_lost(std::size_t count) {
-    // The heads emptied their buffer (a restart): the oldest entries are gone unprinted. They
-    // are marked missed and go out again, same index, same bytes.
-    std::string lost;
+void PrintLoop::on_heads_short(std::size_t count) {
+    // The heads hold fewer tiles than the mirror: the oldest `count` entries left them unseen.
+    // Either the heads printed them while the PLC counter missed them (stuck for fewer tiles
+    // than the photo-eye check can tell), or the heads emptied their buffer (a restart) and
+    // they are gone unprinted. Only the heads' print journal can tell which; a tile it does
+    // not vouch for is taken as lost: missed, and sent again with the same index and bytes.
+    std::string lost, printed;
+    std::uint32_t uncounted = 0;
     for (const HeadEntry& e : mirror_.lose_oldest(count)) {
         if (!e.is_tile()) continue;
-        store_.mark_missed(e.job, e.index);
-        lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
+        std::optional<bool> in_journal;
+        try {
+            const auto [name, index] = heads_name(e);
+            in_journal = heads_->printed(name, index, print_.send_timeout);
+        } catch (const std::exception& ex) {
+            log_line("heads: " + std::string(ex.what()));
+        }
+        if (in_journal.value_or(false)) {
+            store_.mark_printed(e.job, e.index, -1);
+            ++line_printed_;
+            ++uncounted;
+            printed += (printed.empty() ? "" : ", ") + std::to_string(e.index);
+        } else {
+            store_.mark_missed(e.job, e.index);
+            lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
+        }
     }
-    log_line("heads lost " + std::to_string(count) + " tile(s) before printing them" +
-             (lost.empty() ? std::string() : ": missed, printed again: " + lost));
+    // They passed the photo-eye too: the eye's lead over the counter no longer counts them.
+    counter_.counted_by_heads(uncounted);
+    if (!printed.empty())
+        log_line("the heads printed tile(s) the PLC counter did not count: " + printed +
+                 "; marked printed (the heads' print journal)");
+    if (!lost.empty() || printed.empty())
+        log_line("heads lost " + std::to_string(count - uncounted) +
+                 " tile(s) before printing them" +
+                 (lost.empty() ? std::string() : ": missed, printed again: " + lost));
 }
 
 bool PrintLoop::resync() {

@@ -57,7 +57,8 @@ class PrintLoop {
     void on_arrivals(const CounterWatch::Verdict& verdict, bool print_enable);
     void on_estop(std::chrono::nanoseconds at);
     void on_link_lost(const std::string& why);
-    void on_heads_lost(std::size_t count);
+    // The heads hold `count` fewer tiles than the mirror: printed uncounted, or lost.
+    void on_heads_short(std::size_t count);
     bool heads_hold_mirror();
     void select_job();
     void print_turn();

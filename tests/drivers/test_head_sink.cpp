@@ -12,6 +12,7 @@
 
 #include "linesim_process.hpp"
 #include "tilejet/drivers/factory.hpp"
+#include "tilejet/drivers/sim/sim_head_sink.hpp"
 
 using namespace tilejet;
 using namespace std::chrono_literals;
@@ -313,4 +314,127 @@ TEST_CASE("heads that close the pipe mid-tile give an error, not a SIGPIPE",
     ::munmap(pages, size);
     const auto small = separations(100, 11);
     CHECK(heads->send({"job-big", 1, small}, 1s) == 1);  // and the next connection works
+}
+
+TEST_CASE("the heads' print journal tells printed tiles from lost ones, through a restart",
+          "[drivers][heads][sim]") {
+    test::LinesimOptions o;
+    o.speed_mm_s = 1000;  // first tile at the heads after 250 ms, then every 200 ms
+    test::LinesimProcess sim(o);
+    auto heads = drivers::make_head_sink(sim.config());
+    auto gpio = drivers::make_gpio(sim.config());
+    gpio->set(drivers::GpioOutput::print_enable, true);
+    const auto bytes = separations(1000, 4);
+    CHECK(heads->send({"job-j", 0, bytes}, 1s) == 1);
+    CHECK(heads->send({"job-j", 1, bytes}, 1s) == 2);
+    sim.control("start-conveyor");
+    REQUIRE(test::eventually([&] { return sim.status()["printed"] == 1; }, 2s));
+    sim.control("stop-conveyor");
+    sim.control("heads-reset");  // tile 1 is gone unprinted
+    CHECK(heads->held(1s) == 0);
+    CHECK(heads->printed("job-j", 0, 1s) == std::optional<bool>(true));
+    CHECK(heads->printed("job-j", 1, 1s) == std::optional<bool>(false));
+    CHECK(heads->printed("job-k", 0, 1s) == std::optional<bool>(false));
+    // Asked again on the same connection: the exchange stays in step.
+    CHECK(heads->printed("job-j", 0, 1s) == std::optional<bool>(true));
+    CHECK_THROWS_AS(heads->printed("job j", 0, 1s), std::invalid_argument);
+}
+
+TEST_CASE("a malformed PRINTED? request is refused and the connection closed",
+          "[drivers][heads][sim][fault]") {
+    test::LinesimProcess sim;
+    const std::string request = GENERATE(std::string("PRINTED? job-x\n"),
+                                         std::string("PRINTED? job-x 1 2\n"),
+                                         std::string("PRINTED? job-x -\n"));
+    RawHeadsClient client(sim.config().sim.head_socket);
+    client.write(request);
+    CHECK(client.read_line().starts_with("ERROR malformed"));
+    // The heads stay up for everyone else.
+    auto heads = drivers::make_head_sink(sim.config());
+    CHECK(heads->held(1s) == 0);
+}
+
+namespace {
+
+// Heads that take the pipe and then answer every request with `reply`: what the sink makes of
+// a head controller that answers out of turn or with garbage.
+class GarbledHeads {
+  public:
+    GarbledHeads(std::string path, std::string reply) : path_(std::move(path)) {
+        listen_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        sockaddr_un a{};
+        a.sun_family = AF_UNIX;
+        path_.copy(a.sun_path, sizeof a.sun_path - 1);
+        ::unlink(path_.c_str());
+        REQUIRE(::bind(listen_, reinterpret_cast<const sockaddr*>(&a), sizeof a) == 0);
+        REQUIRE(::listen(listen_, 4) == 0);
+        server_ = std::thread([this, reply] {
+            const int c = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
+            if (c < 0) return;
+            char buf[256];
+            alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))];
+            for (bool first = true;; first = false) {
+                iovec v{buf, sizeof buf};
+                msghdr m{};
+                m.msg_iov = &v;
+                m.msg_iovlen = 1;
+                m.msg_control = control;
+                m.msg_controllen = sizeof control;
+                const ssize_t n = ::recvmsg(c, &m, MSG_CMSG_CLOEXEC);
+                if (n <= 0) break;
+                for (cmsghdr* h = CMSG_FIRSTHDR(&m); h; h = CMSG_NXTHDR(&m, h)) {
+                    int fd = -1;
+                    std::memcpy(&fd, CMSG_DATA(h), sizeof fd);
+                    ::close(fd);
+                }
+                const std::string answer = first ? "PIPE OK\n" : reply + "\n";
+                if (::send(c, answer.data(), answer.size(), MSG_NOSIGNAL) < 0) break;
+            }
+            ::close(c);
+        });
+    }
+    ~GarbledHeads() {
+        ::shutdown(listen_, SHUT_RDWR);
+        server_.join();
+        ::close(listen_);
+        ::unlink(path_.c_str());
+    }
+
+  private:
+    std::string path_;
+    int listen_ = -1;
+    std::thread server_;
+};
+
+}  // namespace
+
+TEST_CASE("a reply to PRINTED? that is not one is an error naming the request",
+          "[drivers][heads][sim][fault]") {
+    const std::string reply = GENERATE(std::string("PRINTED maybe"), std::string("HELD 2"),
+                                       std::string("PRINTED yes please"), std::string(""));
+    test::TempDir dir;
+    const std::string path = (dir.path() / "heads.sock").string();
+    GarbledHeads server(path, reply);
+    drivers::sim::SimHeadSink heads(path);
+    try {
+        (void)heads.printed("job-g", 3, 1s);
+        FAIL("a reply '" << reply << "' was taken");
+    } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()).find("PRINTED? job-g 3") != std::string::npos);
+    }
+}
+
+TEST_CASE("a reply to HELD? that is not one is an error naming it", "[drivers][heads][sim][fault]") {
+    const std::string reply =
+        GENERATE(std::string("HELD"), std::string("HELD -1"), std::string("PRINTED yes"));
+    test::TempDir dir;
+    const std::string path = (dir.path() / "heads.sock").string();
+    GarbledHeads server(path, reply);
+    drivers::sim::SimHeadSink heads(path);
+    try {
+        (void)heads.held(1s);
+        FAIL("a reply '" << reply << "' was taken");
+    } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()).find("HELD") != std::string::npos);
+    }
 }

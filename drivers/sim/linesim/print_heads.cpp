@@ -33,6 +33,9 @@ bool still_open(int fd) {
     return n > 0 || (n < 0 && (errno == EAGAIN || errno == EINTR));
 }
 constexpr size_t kScratchBytes = size_t(1) << 20;
+// Tiles the print journal remembers: far more than a buffer holds, so that any tile the daemon
+// can still be unsure of is in it.
+constexpr size_t kJournalTiles = 4096;
 
 std::string sha256_hex(EVP_MD_CTX& digest) {
     unsigned char bytes[EVP_MAX_MD_SIZE];
@@ -144,6 +147,10 @@ bool PrintHeads::serve(Client& c, ns now) {
                 c.peer.send("HELD " + std::to_string(buffer_.size()) + "\n");
                 continue;
             }
+            if (line.starts_with("PRINTED? ")) {
+                if (!answer_printed(c, line)) return false;
+                continue;
+            }
             std::istringstream in(line);
             std::string verb;
             long long bytes = -1;
@@ -224,6 +231,24 @@ bool PrintHeads::read_socket(Client& c) {
     return true;
 }
 
+bool PrintHeads::answer_printed(Client& c, const std::string& line) {
+    std::istringstream in(line.substr(9));
+    std::string job, rest;
+    std::uint64_t tile = 0;
+    in >> job >> tile;
+    if (!in || (in >> rest)) {
+        c.peer.send("ERROR malformed request '" + line.substr(0, 200) + "'\n");
+        return false;
+    }
+    const bool found = std::find(journal_.begin(), journal_.end(), std::pair{job, tile}) !=
+                       journal_.end();
+    // Not in a journal that has forgotten its oldest entries: printed long ago, or never.
+    c.peer.send(found ? "PRINTED yes\n"
+                : journal_rolled_ ? "PRINTED unknown\n"
+                                  : "PRINTED no\n");
+    return true;
+}
+
 void PrintHeads::tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready) {
     nlohmann::ordered_json j;
     j["time"] = wall_time(at);
@@ -238,6 +263,11 @@ void PrintHeads::tile_arrives(std::uint64_t line_tile, ns at, bool print_enable,
         j["bytes"] = s.bytes;
         if (!s.sha256.empty()) j["sha256"] = s.sha256;
         ++printed_;
+        journal_.emplace_back(s.job, s.tile);
+        if (journal_.size() > kJournalTiles) {
+            journal_.pop_front();
+            journal_rolled_ = true;
+        }
     } else {
         j["status"] = "missed";
         j["reason"] = !have           ? "no separations before the leading edge"

@@ -32,7 +32,8 @@ class PrintHeads {
     void tile_arrives(std::uint64_t line_tile, ns at, bool print_enable, bool head_ready);
 
     size_t buffered() const { return buffer_.size(); }
-    // A head controller that restarted: every buffered tile is gone.
+    // A head controller that restarted: every buffered tile is gone. The print journal is
+    // kept (controllers keep it with their print counts, through restarts).
     void reset_buffer() { buffer_.clear(); }
     std::uint64_t printed() const { return printed_; }
     std::uint64_t missed() const { return missed_; }
@@ -74,6 +75,8 @@ class PrintHeads {
 
     // False when the client sent something it cannot recover from (closed then).
     bool serve(Client& client, ns now);
+    // PRINTED? <job> <tile>: whether the journal has it. False for a malformed request.
+    bool answer_printed(Client& client, const std::string& line);
     // False when the client closed mid-tile.
     bool receive_separations(Client& client);
     // What came on the client's socket: lines, and a pipe passed with them. False once closed.
@@ -86,6 +89,9 @@ class PrintHeads {
     bool checksums_;
     std::vector<Client> clients_;
     std::deque<Separations> buffer_;
+    // The last kJournalTiles tiles printed, oldest first: PRINTED? asks it.
+    std::deque<std::pair<std::string, std::uint64_t>> journal_;
+    bool journal_rolled_ = false;  // it has forgotten some
     std::ofstream log_;
     std::vector<char> scratch_;
     int devnull_ = -1;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,13 @@ class HeadSink {
     virtual int send(const TileSeparations& tile, std::chrono::milliseconds timeout) = 0;
     // How many tiles the heads hold now; std::runtime_error when they cannot be asked.
     virtual int held(std::chrono::milliseconds timeout) = 0;
+    // Whether the heads printed this tile, from their print journal (head controllers log what
+    // they fire, for ink use and head life): the only witness that can tell a tile printed
+    // while the PLC counter missed it from one the heads lost in a restart. std::nullopt when
+    // these heads keep no journal or it no longer reaches back that far; std::runtime_error
+    // when they cannot be asked.
+    virtual std::optional<bool> printed(const std::string& job_id, std::uint64_t tile_index,
+                                        std::chrono::milliseconds timeout) = 0;
 };
 
 }  // namespace tilejet::drivers
