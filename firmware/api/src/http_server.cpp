@@ -1,6 +1,7 @@
 #include "http_server.hpp"
 
 #include <netdb.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -154,9 +155,19 @@ bool HttpServer::evict_idle(const std::string& address) {
     const auto rank = [](const Connection* c) {
         return c->answered > 0 && c->last_refused ? 0 : c->answered == 0 ? 1 : 2;
     };
+    // A connection whose request waits unread in the kernel is a request on its way (the
+    // server is busy, not the client idle): it is never cut for a newer one, which would let a
+    // burst of connections shut out requests sent before it (the attack suite's status check
+    // lost one that way under load). libmicrohttpd reads what comes as soon as it can, so
+    // such a wait is short, and the deadlines still apply.
+    const auto request_waiting = [](const Connection* c) {
+        int unread = 0;
+        return !c->in_request && c->fd >= 0 &&
+               ::ioctl(c->fd, FIONREAD, &unread) == 0 && unread > 0;
+    };
     Connection* victim = nullptr;
     for (Connection* c : connections_)
-        if (!c->shut && (c->reading_body || !c->in_request) &&
+        if (!c->shut && (c->reading_body || !c->in_request) && !request_waiting(c) &&
             (address.empty() || c->address == address) &&
             (!victim || rank(c) < rank(victim) ||
              (rank(c) == rank(victim) && c->phase_start < victim->phase_start)))
