@@ -112,8 +112,7 @@ std::optional<bool> SimHeadSink::printed(const std::string& job_id, std::uint64_
     if (reply == "PRINTED no") return false;
     if (reply == "PRINTED unknown") return std::nullopt;
     disconnect();  // out of step with the heads: the next exchange starts afresh
-    throw std::runtime_error("sim heads: " + request + " answered '" + reply.substr(0, 100) +
-                             "'");
+    throw std::runtime_error("sim heads: " + request + " answered '" + reply.substr(0, 100) + "'");
 }
 
 }  // namespace tilejet::drivers::sim

@@ -26,7 +26,7 @@ void check_size(cv::Size size, const std::string& name) {
         throw SynthError("exemplar '" + name + "' is " + std::to_string(size.width) + "x" +
                          std::to_string(size.height) + " px; texture maps take exemplars up to " +
                          std::to_string(kMaxExemplarPixels >> 20) +
-                         " Mpx (e.g. 4096x4096): crop or scale it first");
+                         " Mpx (e.g. 8192x8192): crop or scale it first");
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "analysis_size.hpp"
+
 namespace tilejet::synth::detail {
 
 namespace {
@@ -22,6 +24,14 @@ int cell_side_for_grain(double grain, bool lattice) {
 
 double grain_size(const cv::Mat& rgb) {
     CV_Assert(rgb.type() == CV_8UC3);
+    // The autocorrelation of a slab scan in full would take 2 GB (8192 px: 16 times that); its
+    // largest structures show as well at a few thousand px across, in px `scale` times larger.
+    const double scale = analysis_scale(rgb.size());
+    if (scale > 1) {
+        cv::Mat smaller;
+        cv::resize(rgb, smaller, analysis_size(rgb.size()), 0, 0, cv::INTER_AREA);
+        return scale * grain_size(smaller);
+    }
     cv::Mat grey;
     cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
     grey.convertTo(grey, CV_64F);

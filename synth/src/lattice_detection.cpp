@@ -7,6 +7,7 @@
 #include <tuple>
 #include <vector>
 
+#include "analysis_size.hpp"
 #include "tilejet/synth/lattice.hpp"
 
 namespace tilejet::synth {
@@ -267,24 +268,7 @@ std::optional<Lattice> detect_courses(const SelfCorrelation& sc) {
     return found;
 }
 
-}  // namespace
-
-std::string_view lattice_kind_name(LatticeKind kind) {
-    switch (kind) {
-        case LatticeKind::Regular:
-            return "regular";
-        case LatticeKind::NearRegular:
-            return "near-regular";
-        case LatticeKind::Courses:
-            return "courses";
-        case LatticeKind::Stochastic:
-            return "stochastic";
-    }
-    return "stochastic";
-}
-
-Lattice detect_lattice(const cv::Mat& rgb) {
-    CV_Assert(rgb.type() == CV_8UC3);
+Lattice detect_as_is(const cv::Mat& rgb) {
     Lattice stochastic;
     const SelfCorrelation sc(rgb);
     if (sc.flat()) return stochastic;
@@ -321,6 +305,95 @@ Lattice detect_lattice(const cv::Mat& rgb) {
     l.geometry_regularity = best.mean_ncc;
     l.appearance_regularity = std::clamp(1.0 - best.mean_msd, 0.0, 1.0);
     return l;
+}
+
+// The normalized correlation of `grey` with itself shifted by `shift`, over their overlap,
+// sampled on a grid of about a million points.
+double shifted_ncc(const cv::Mat& grey, cv::Point shift) {
+    const int x0 = std::max(0, -shift.x), x1 = std::min(grey.cols, grey.cols - shift.x);
+    const int y0 = std::max(0, -shift.y), y1 = std::min(grey.rows, grey.rows - shift.y);
+    if (x1 - x0 < 2 || y1 - y0 < 2) return -1;
+    const int stride = std::max(1, int(std::sqrt(double(x1 - x0) * double(y1 - y0) / 1e6)));
+    double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    for (int y = y0; y < y1; y += stride) {
+        const auto* a = grey.ptr<std::uint8_t>(y);
+        const auto* b = grey.ptr<std::uint8_t>(y + shift.y) + shift.x;
+        for (int x = x0; x < x1; x += stride) {
+            const double u = a[x], v = b[x];
+            n += 1, sa += u, sb += v, saa += u * u, sbb += v * v, sab += u * v;
+        }
+    }
+    const double den = (n * saa - sa * sa) * (n * sbb - sb * sb);
+    return den > 0 ? (n * sab - sa * sb) / std::sqrt(den) : -1;
+}
+
+// A lattice found `scale` times smaller, brought to full size: its vectors scaled, then moved
+// to where the full image correlates best with itself within a pixel of the smaller one's.
+Lattice scaled_up(Lattice l, const cv::Mat& rgb, double scale) {
+    cv::Mat grey;
+    cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+    const int reach = int(std::ceil(scale));
+    if (l.kind == LatticeKind::Courses) {
+        const cv::Point across = l.v1.x == 1 ? cv::Point(0, 1) : cv::Point(1, 0);
+        const int guess = int(std::lround(l.pitch * scale));
+        int best = guess;
+        double best_ncc = -2;
+        std::map<int, double> ncc;
+        for (int t = std::max(1, guess - reach); t <= guess + reach; ++t) {
+            ncc[t] = shifted_ncc(grey, across * t);
+            if (ncc[t] > best_ncc) best_ncc = ncc[t], best = t;
+        }
+        // A fraction of a pixel adds up over courses: the peak of a parabola through the best
+        // whole pitch and its neighbours.
+        double pitch = best;
+        if (ncc.count(best - 1) && ncc.count(best + 1)) {
+            const double a = ncc[best - 1], b = ncc[best], c = ncc[best + 1];
+            const double curve = a - 2 * b + c;
+            if (curve < 0) pitch += std::clamp(0.5 * (a - c) / curve, -0.5, 0.5);
+        }
+        l.pitch = pitch;
+        l.v2 = across * int(std::lround(pitch));
+        return l;
+    }
+    for (cv::Point* v : {&l.v1, &l.v2}) {
+        const cv::Point guess(int(std::lround(v->x * scale)), int(std::lround(v->y * scale)));
+        double best_ncc = -2;
+        for (int dy = -reach; dy <= reach; ++dy)
+            for (int dx = -reach; dx <= reach; ++dx) {
+                const cv::Point candidate = guess + cv::Point(dx, dy);
+                const double ncc = shifted_ncc(grey, candidate);
+                if (ncc > best_ncc) best_ncc = ncc, *v = candidate;
+            }
+    }
+    return l;
+}
+
+}  // namespace
+
+std::string_view lattice_kind_name(LatticeKind kind) {
+    switch (kind) {
+        case LatticeKind::Regular:
+            return "regular";
+        case LatticeKind::NearRegular:
+            return "near-regular";
+        case LatticeKind::Courses:
+            return "courses";
+        case LatticeKind::Stochastic:
+            return "stochastic";
+    }
+    return "stochastic";
+}
+
+Lattice detect_lattice(const cv::Mat& rgb) {
+    CV_Assert(rgb.type() == CV_8UC3);
+    const double scale = detail::analysis_scale(rgb.size());
+    if (scale == 1) return detect_as_is(rgb);
+    // A slab scan is looked at smaller (analysis_size.hpp), its lattice then fitted to it.
+    cv::Mat smaller;
+    cv::resize(rgb, smaller, detail::analysis_size(rgb.size()), 0, 0, cv::INTER_AREA);
+    const Lattice found = detect_as_is(smaller);
+    if (found.kind == LatticeKind::Stochastic) return found;
+    return scaled_up(found, rgb, scale);
 }
 
 }  // namespace tilejet::synth

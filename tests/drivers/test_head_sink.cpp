@@ -343,9 +343,9 @@ TEST_CASE("the heads' print journal tells printed tiles from lost ones, through 
 TEST_CASE("a malformed PRINTED? request is refused and the connection closed",
           "[drivers][heads][sim][fault]") {
     test::LinesimProcess sim;
-    const std::string request = GENERATE(std::string("PRINTED? job-x\n"),
-                                         std::string("PRINTED? job-x 1 2\n"),
-                                         std::string("PRINTED? job-x -\n"));
+    const std::string request =
+        GENERATE(std::string("PRINTED? job-x\n"), std::string("PRINTED? job-x 1 2\n"),
+                 std::string("PRINTED? job-x -\n"));
     RawHeadsClient client(sim.config().sim.head_socket);
     client.write(request);
     CHECK(client.read_line().starts_with("ERROR malformed"));
@@ -424,7 +424,8 @@ TEST_CASE("a reply to PRINTED? that is not one is an error naming the request",
     }
 }
 
-TEST_CASE("a reply to HELD? that is not one is an error naming it", "[drivers][heads][sim][fault]") {
+TEST_CASE("a reply to HELD? that is not one is an error naming it",
+          "[drivers][heads][sim][fault]") {
     const std::string reply =
         GENERATE(std::string("HELD"), std::string("HELD -1"), std::string("PRINTED yes"));
     test::TempDir dir;

@@ -205,3 +205,22 @@ TEST_CASE("a map of brick courses keeps the courses running across cells", "[lat
                                  << ", " << broken.score << " above");
     REQUIRE(broken.score < 0.6 * truth.score);
 }
+
+// Slab scans are analysed at most 2048 px across (an FFT of the whole would take gigabytes),
+// and their lattice fitted back to the full image to the pixel.
+TEST_CASE("the lattice of a slab-scan-sized exemplar is found to the pixel from a smaller copy",
+          "[lattice][slab]") {
+    const cv::Size size(4300, 2300);  // analysed 2.1 times smaller
+    const Basis brick{{440, 0}, {220, 187}};
+    const Lattice l = detect_lattice(make_lattice_texture(brick, size, 5, false));
+    INFO("found v1 (" << l.v1.x << "," << l.v1.y << ") v2 (" << l.v2.x << "," << l.v2.y << ") kind "
+                      << lattice_kind_name(l.kind));
+    REQUIRE(l.kind != LatticeKind::Stochastic);
+    CHECK(same_lattice(l, brick, 1.0));
+
+    const double pitch = 61.3;
+    const Lattice c = detect_lattice(tilejet::test::make_course_texture(pitch, size, 6));
+    REQUIRE(c.kind == LatticeKind::Courses);
+    CHECK(c.pitch == Approx(pitch).margin(0.3));
+    CHECK(c.v2 == cv::Point(0, 61));
+}

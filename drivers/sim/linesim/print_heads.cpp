@@ -240,12 +240,10 @@ bool PrintHeads::answer_printed(Client& c, const std::string& line) {
         c.peer.send("ERROR malformed request '" + line.substr(0, 200) + "'\n");
         return false;
     }
-    const bool found = std::find(journal_.begin(), journal_.end(), std::pair{job, tile}) !=
-                       journal_.end();
+    const bool found =
+        std::find(journal_.begin(), journal_.end(), std::pair{job, tile}) != journal_.end();
     // Not in a journal that has forgotten its oldest entries: printed long ago, or never.
-    c.peer.send(found ? "PRINTED yes\n"
-                : journal_rolled_ ? "PRINTED unknown\n"
-                                  : "PRINTED no\n");
+    c.peer.send(found ? "PRINTED yes\n" : journal_rolled_ ? "PRINTED unknown\n" : "PRINTED no\n");
     return true;
 }
 

@@ -162,8 +162,7 @@ bool HttpServer::evict_idle(const std::string& address) {
     // such a wait is short, and the deadlines still apply.
     const auto request_waiting = [](const Connection* c) {
         int unread = 0;
-        return !c->in_request && c->fd >= 0 &&
-               ::ioctl(c->fd, FIONREAD, &unread) == 0 && unread > 0;
+        return !c->in_request && c->fd >= 0 && ::ioctl(c->fd, FIONREAD, &unread) == 0 && unread > 0;
     };
     Connection* victim = nullptr;
     for (Connection* c : connections_)

@@ -9,10 +9,10 @@
 
 namespace tilejet::synth {
 
-// Limits on exemplars: smaller cannot hold a texture, larger belongs to the canvas workflow
-// tilejet replaces and would make maps far beyond the ~1 MB a line wants.
+// Limits on exemplars: smaller cannot hold a texture; larger than a 580 mm slab scanned at
+// 360 dpi (8192 x 8192 px) would take the build past 8 GB.
 inline constexpr int kMinExemplarSide = 16;
-inline constexpr int64_t kMaxExemplarPixels = int64_t(16) << 20;
+inline constexpr int64_t kMaxExemplarPixels = int64_t(64) << 20;
 
 // Reads a PNG, JPEG or TIFF exemplar (8 or 16 bit, grey, RGB or with alpha) as 8-bit RGB.
 // Throws SynthError naming the file when it cannot be read, decoded, or is out of limits; an
