@@ -166,7 +166,7 @@ void add_map_commands(CLI::App& app) {
                   "config/tilejet.toml)");
     b->add_option("--cell", build->params.cell_size,
                   "cell size in px (default: four of the exemplar's largest structures, 256 to 320 "
-                  "px, at most the exemplar's side)");
+                  "px (to 640 px from 1024 px exemplars on), at most the exemplar's side)");
     b->add_option("--corner-colours", build->params.corner_colours,
                   "corner colours K: K^4 cell images that meet seamlessly whatever the hash "
                   "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "

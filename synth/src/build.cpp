@@ -280,7 +280,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     const double grain = params.cell_size ? 0 : grain_size(input);
     const auto cell_side = [&](bool on_lattice) {
         return params.cell_size ? params.cell_size
-                                : std::min(cell_side_for_grain(grain, on_lattice),
+                                : std::min(cell_side_for_grain(grain, on_lattice,
+                                                               std::min(input.cols, input.rows)),
                                            std::min(input.cols, input.rows));
     };
     std::optional<LatticeTranslations> lattice;

@@ -14,12 +14,14 @@ namespace {
 constexpr int kDirections = 64;
 constexpr double kGone = 0.1;  // correlation below this: no longer the same structure
 constexpr int kCellStep = 32;
+constexpr int kSlabSide = 1024;  // exemplars this large may have cells of up to 640 px
 }  // namespace
 
-int cell_side_for_grain(double grain, bool lattice) {
+int cell_side_for_grain(double grain, bool lattice, int exemplar_side) {
     const double grains = lattice ? 3 : 4;
     const int side = int(std::lround(grains * grain / kCellStep)) * kCellStep;
-    return lattice ? std::clamp(side, 128, 192) : std::clamp(side, 256, 320);
+    if (lattice) return std::clamp(side, 128, 192);
+    return std::clamp(side, 256, exemplar_side >= kSlabSide ? 640 : 320);
 }
 
 double grain_size(const cv::Mat& rgb) {

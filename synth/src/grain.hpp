@@ -19,10 +19,15 @@ double grain_size(const cv::Mat& rgb);
 // limestone from 1.86 to 1.14, and the blocks of 128 px that showed on limestone's walls went.
 // (Earlier, cells of 64 px made fine designs 1.3 to 1.5 times worse: a seam every few grains.)
 // Coarse stones get more than 256 px, so a cell still holds a few of their structures.
+// Exemplars of 1024 px and more across (`exemplar_side`, the smaller side: slab scans, designs
+// at 360 dpi) may have cells of up to 640 px: their veins are hundreds of px long, and in
+// 320 px cells they came out chopped into a grid of cell-sized pieces (the demo stone at
+// 200 dpi: 1.22 times quilting's texture energy in 320 px cells, 1.03 in 640 px ones; the
+// build takes about five times as long, within the minutes a slab scan is given).
 // On a `lattice` (bricks, courses, laid tiles) cells stay at three structures, 128 to 192 px:
 // there copies move only by lattice translations, so a source holds few distinct blocks, and
 // larger cells showed the cell's own pitch (a wall of courses in 176x199 px cells came out a
 // two-way lattice, where 128x133 px cells kept its courses).
-int cell_side_for_grain(double grain, bool lattice);
+int cell_side_for_grain(double grain, bool lattice, int exemplar_side);
 
 }  // namespace tilejet::synth::detail

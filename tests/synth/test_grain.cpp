@@ -28,7 +28,21 @@ cv::Mat blobs(int side, int radius, std::uint32_t seed) {
 TEST_CASE("coarser structures have a larger grain", "[grain]") {
     const double fine = grain_size(blobs(512, 4, 1)), coarse = grain_size(blobs(512, 16, 1));
     CHECK(fine < coarse);
-    CHECK(cell_side_for_grain(fine, false) <= cell_side_for_grain(coarse, false));
+    CHECK(cell_side_for_grain(fine, false, 512) <= cell_side_for_grain(coarse, false, 512));
+}
+
+// At 360 dpi a stone's veins are hundreds of px long: a slab scan's cells may hold more of them
+// than a small exemplar's, whose build is held to a minute.
+TEST_CASE("a slab scan's coarse structures get larger cells than a small exemplar can have",
+          "[grain][slab]") {
+    const cv::Mat small = blobs(512, 40, 3);
+    cv::Mat large;
+    cv::resize(small, large, {2048, 2048}, 0, 0, cv::INTER_LINEAR);
+    const int small_cell = cell_side_for_grain(grain_size(small), false, 512);
+    const int large_cell = cell_side_for_grain(grain_size(large), false, 2048);
+    INFO("cells " << small_cell << " px at 512, " << large_cell << " px at 2048");
+    CHECK(large_cell > small_cell);
+    CHECK(large_cell <= 640);
 }
 
 // A slab scan is measured at most 2048 px across: the same structures, scanned at four times
