@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <map>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "../synth/fixtures.hpp"
 #include "tilejet/synth/patch_labels.hpp"
@@ -78,4 +79,28 @@ TEST_CASE("quilting provenance names the exemplar pixel of every output pixel", 
     const double share = double(cv::countNonZero(seams)) / double(seams.total());
     CHECK(share > 0.005);
     CHECK(share < 0.3);
+}
+
+// Three bytes hold the indices of 2^24 pixels; a slab scan past that is quilted a second time
+// for the higher bits. Were the two quilts to differ, neighbours copied together would not
+// come out as neighbours in the exemplar, and seams would be everywhere.
+TEST_CASE("quilting provenance names pixels past 2^24 of a slab-sized exemplar", "[quality]") {
+    // Half its pixels lie past 2^24. Quilting searches one random window of the exemplar per
+    // quilt: the first seed whose window lies there.
+    cv::Mat noise(4096 / 8, 8192 / 8, CV_8UC3), exemplar;
+    cv::RNG(7).fill(noise, cv::RNG::UNIFORM, 0, 256);
+    cv::resize(noise, exemplar, {8192, 4096}, 0, 0, cv::INTER_CUBIC);  // blobs 8 px across
+    synth::QuiltedImage q;
+    std::int32_t largest = 0;
+    for (std::uint64_t seed = 1; seed <= 12 && largest < (1 << 24); ++seed) {
+        q = synth::quilt_texture(exemplar, {256, 256}, seed, 64);
+        largest = 0;
+        for (int y = 0; y < q.provenance.rows; ++y)
+            for (int x = 0; x < q.provenance.cols; ++x)
+                largest = std::max(largest, q.provenance.at<int32_t>(y, x));
+    }
+    REQUIRE(largest >= (1 << 24));
+    CHECK(largest < std::int32_t(exemplar.total()));
+    const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
+    CHECK(double(cv::countNonZero(seams)) / double(seams.total()) < 0.3);
 }
