@@ -2,6 +2,7 @@
 // tile exactly once with the bytes an offline render gives, through SIGKILL and restart, an
 // e-stop and a Modbus link drop.
 #include <catch2/catch.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <filesystem>
 #include <random>
 
@@ -219,6 +220,12 @@ TEST_CASE("when rendering cannot keep up the conveyor is slowed and the state sa
         },
         20s));
     CHECK(daemon.log().find("conveyor slowed") != std::string::npos);
+    // Its tiles are 4724 px square; the previews of the first ones are proofs to look at.
+    const auto preview = dir.path() / "previews" / "job-1" / "tile-0.png";
+    REQUIRE(test::eventually([&] { return std::filesystem::exists(preview); }, 10s));
+    const cv::Mat png = cv::imread(preview.string());
+    CHECK(png.cols == 2048);
+    CHECK(png.rows == 2048);
 }
 
 TEST_CASE("a job whose last tiles are still rendering when the line stops for them finishes",
