@@ -80,12 +80,14 @@ std::vector<cv::Rect> placed_strips(const cv::Mat& filled, int overlap) {
 // than cv::matchTemplate, which transforms the exemplar again on every call).
 class BlockSearch {
   public:
-    BlockSearch(const cv::Mat& ex_lab, Rng& rng) {
+    // The window searched is kSearchWindow px, or twice the largest footprint when that is
+    // more (blocks of a slab scan's baseline quilt are 2048 px), within the exemplar.
+    BlockSearch(const cv::Mat& ex_lab, Rng& rng, cv::Size largest) {
         window_ = cv::Rect(0, 0, ex_lab.cols, ex_lab.rows);
-        if (ex_lab.cols > kSearchWindow)
-            window_.x = rng.range(0, ex_lab.cols - kSearchWindow), window_.width = kSearchWindow;
-        if (ex_lab.rows > kSearchWindow)
-            window_.y = rng.range(0, ex_lab.rows - kSearchWindow), window_.height = kSearchWindow;
+        const int wide = std::max(kSearchWindow, 2 * largest.width);
+        const int high = std::max(kSearchWindow, 2 * largest.height);
+        if (ex_lab.cols > wide) window_.x = rng.range(0, ex_lab.cols - wide), window_.width = wide;
+        if (ex_lab.rows > high) window_.y = rng.range(0, ex_lab.rows - high), window_.height = high;
         size_ = {cv::getOptimalDFTSize(window_.width), cv::getOptimalDFTSize(window_.height)};
         std::vector<cv::Mat> channels;
         cv::split(ex_lab(window_), channels);
@@ -194,7 +196,7 @@ cv::Mat quilt(const cv::Mat& ex_rgb, const cv::Mat& ex_lab, cv::Size size,
     Canvas c{cv::Mat(canvas, CV_8UC3, cv::Scalar::all(0)),
              cv::Mat(canvas, CV_32FC3, cv::Scalar::all(0)), cv::Mat(canvas, CV_8U, cv::Scalar(0))};
 
-    const BlockSearch search(ex_lab, rng);
+    const BlockSearch search(ex_lab, rng, {largest_w, largest_h});
     for (size_t l = 0; l + 1 < ys.size(); ++l) {
         for (size_t k = 0; k + 1 < xs.size(); ++k) {
             // Footprint: the block plus its overlap to the left and above, wrapping around.

@@ -104,3 +104,15 @@ TEST_CASE("quilting provenance names pixels past 2^24 of a slab-sized exemplar",
     const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
     CHECK(double(cv::countNonZero(seams)) / double(seams.total()) < 0.3);
 }
+
+// The eval's baselines quilt a slab scan with blocks of a quarter of its side (2048 px for an
+// 8192 px one), more than the 1024 px window the block search used to look in: it failed.
+TEST_CASE("quilting with blocks larger than the search window looks in a larger one", "[quality]") {
+    cv::Mat noise(2400 / 16, 2400 / 16, CV_8UC3), exemplar;
+    cv::RNG(3).fill(noise, cv::RNG::UNIFORM, 0, 256);
+    cv::resize(noise, exemplar, {2400, 2400}, 0, 0, cv::INTER_CUBIC);
+    const synth::QuiltedImage q = synth::quilt_texture(exemplar, {1800, 1800}, 2, 1100);
+    REQUIRE(q.rgb.size() == cv::Size(1800, 1800));
+    const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
+    CHECK(double(cv::countNonZero(seams)) / double(seams.total()) < 0.05);
+}
