@@ -86,13 +86,14 @@ TEST_CASE("quilting provenance names the exemplar pixel of every output pixel", 
 // come out as neighbours in the exemplar, and seams would be everywhere.
 TEST_CASE("quilting provenance names pixels past 2^24 of a slab-sized exemplar", "[quality]") {
     // Half its pixels lie past 2^24. Quilting searches one random window of the exemplar per
-    // quilt: the first seed whose window lies there.
+    // quilt: the first seed whose window lies there (5, as the quilt's choices stand: the
+    // search starts there, and goes on should they change).
     cv::Mat noise(4096 / 8, 8192 / 8, CV_8UC3), exemplar;
     cv::RNG(7).fill(noise, cv::RNG::UNIFORM, 0, 256);
     cv::resize(noise, exemplar, {8192, 4096}, 0, 0, cv::INTER_CUBIC);  // blobs 8 px across
     synth::QuiltedImage q;
     std::int32_t largest = 0;
-    for (std::uint64_t seed = 1; seed <= 12 && largest < (1 << 24); ++seed) {
+    for (std::uint64_t seed = 5; seed <= 16 && largest < (1 << 24); ++seed) {
         q = synth::quilt_texture(exemplar, {256, 256}, seed, 64);
         largest = 0;
         for (int y = 0; y < q.provenance.rows; ++y)
