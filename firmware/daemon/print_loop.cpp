@@ -587,16 +587,21 @@ void PrintLoop::on_heads_short(std::size_t count) {
     // than the photo-eye check can tell), or the heads emptied their buffer (a restart) and
     // they are gone unprinted. Only the heads' print journal can tell which; a tile it does
     // not vouch for is taken as lost: missed, and sent again with the same index and bytes.
+    // Nor can it vouch for a tile spoiled before: its journal holds the spoiled print too, so
+    // a reprint the heads lost would pass for printed. Such a tile goes out again (a spoiled
+    // tile may be printed more than once; a tile never printed whole may not).
     std::string lost, printed;
     std::uint32_t uncounted = 0;
     for (const HeadEntry& e : mirror_.lose_oldest(count)) {
         if (!e.is_tile()) continue;
         std::optional<bool> in_journal;
-        try {
-            const auto [name, index] = heads_name(e);
-            in_journal = heads_->printed(name, index, print_.send_timeout);
-        } catch (const std::exception& ex) {
-            log_line("heads: " + std::string(ex.what()));
+        if (store_.times_spoiled(e.job, e.index) == 0) {
+            try {
+                const auto [name, index] = heads_name(e);
+                in_journal = heads_->printed(name, index, print_.send_timeout);
+            } catch (const std::exception& ex) {
+                log_line("heads: " + std::string(ex.what()));
+            }
         }
         if (in_journal.value_or(false)) {
             store_.mark_printed(e.job, e.index, -1);

@@ -164,3 +164,28 @@ TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one 
     CHECK_THROWS_WITH(jobs::JobStore(path.string()),
                       Catch::Contains("schema version 99") && Catch::Contains(path.string()));
 }
+
+// The print loop trusts the heads' print journal only for tiles never spoiled: a spoiled tile's
+// first print is in the journal too.
+TEST_CASE("a tile's spoils are counted through its reprint", "[jobs]") {
+    test::TempDir dir;
+    jobs::JobStore store((dir.path() / "jobs.db").string());
+    jobs::JobSpec spec;
+    spec.map = "/x.tjmap";
+    spec.seed = 1;
+    spec.tiles = 3;
+    spec.tile_width_mm = spec.tile_height_mm = 100;
+    spec.dpi = 20;
+    const jobs::Job job = store.add_job(spec);
+    CHECK(store.times_spoiled(job.id, 0) == 0);  // not sent yet
+    store.mark_sending(job.id, 0, 1);
+    store.mark_sent(job.id, 0);
+    store.mark_printed(job.id, 0, 0);
+    CHECK(store.times_spoiled(job.id, 0) == 0);
+    store.mark_spoiled(job.id, 0);
+    store.mark_sending(job.id, 0, 2);  // sent again
+    store.mark_sent(job.id, 0);
+    CHECK(store.times_spoiled(job.id, 0) == 1);
+    CHECK(store.times_spoiled(job.id, 2) == 0);
+    CHECK(store.times_spoiled(job.id + 1, 0) == 0);
+}

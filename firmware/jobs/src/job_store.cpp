@@ -320,6 +320,12 @@ std::optional<TileState> JobStore::tile_state(std::int64_t job, std::int64_t ind
     return parse_tile_state(s.text(0));
 }
 
+int JobStore::times_spoiled(std::int64_t job, std::int64_t index) {
+    auto s = db_.prepare("SELECT spoiled FROM tiles WHERE job = ? AND idx = ?");
+    s.bind(1, job).bind(2, index);
+    return s.step() ? int(s.integer(0)) : 0;
+}
+
 std::int64_t JobStore::last_seq() {
     auto s = db_.prepare("SELECT coalesce(max(seq), 0) FROM tiles");
     return s.step() ? s.integer(0) : 0;

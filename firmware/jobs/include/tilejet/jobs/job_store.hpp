@@ -38,6 +38,8 @@ class JobStore {
     void mark_missed(std::int64_t job, std::int64_t index);
     void add_missed_line_tiles(std::int64_t job, std::int64_t count);
     std::optional<TileState> tile_state(std::int64_t job, std::int64_t index);
+    // How many times the tile was spoiled (printed, then reprinted): 0 for an unknown tile.
+    int times_spoiled(std::int64_t job, std::int64_t index);
     // The `limit` highest tile indices of `job` confirmed printed, ascending (the panel's wall).
     std::vector<std::int64_t> printed_tiles(std::int64_t job, int limit);
     // The highest send sequence number in use (0 when none).
