@@ -7,7 +7,8 @@
 // resolution) shows as well in an image a few thousand px across.
 #include <algorithm>
 #include <cmath>
-#include <opencv2/core/types.hpp>
+#include <opencv2/core/mat.hpp>
+#include <opencv2/imgproc.hpp>
 
 namespace tilejet::synth::detail {
 
@@ -22,6 +23,15 @@ inline cv::Size analysis_size(cv::Size size) {
     const double scale = analysis_scale(size);
     return {std::max(1, int(std::lround(size.width / scale))),
             std::max(1, int(std::lround(size.height / scale)))};
+}
+
+// The image analysed in place of `rgb`: an area-averaged copy of analysis_size(), or `rgb`
+// itself when it is small enough.
+inline cv::Mat analysis_copy(const cv::Mat& rgb) {
+    if (analysis_scale(rgb.size()) == 1) return rgb;
+    cv::Mat smaller;
+    cv::resize(rgb, smaller, analysis_size(rgb.size()), 0, 0, cv::INTER_AREA);
+    return smaller;
 }
 
 }  // namespace tilejet::synth::detail

@@ -29,11 +29,7 @@ double grain_size(const cv::Mat& rgb) {
     // The autocorrelation of a slab scan in full would take 2 GB (8192 px: 16 times that); its
     // largest structures show as well at a few thousand px across, in px `scale` times larger.
     const double scale = analysis_scale(rgb.size());
-    if (scale > 1) {
-        cv::Mat smaller;
-        cv::resize(rgb, smaller, analysis_size(rgb.size()), 0, 0, cv::INTER_AREA);
-        return scale * grain_size(smaller);
-    }
+    if (scale > 1) return scale * grain_size(analysis_copy(rgb));
     cv::Mat grey;
     cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
     grey.convertTo(grey, CV_64F);

@@ -389,9 +389,7 @@ Lattice detect_lattice(const cv::Mat& rgb) {
     const double scale = detail::analysis_scale(rgb.size());
     if (scale == 1) return detect_as_is(rgb);
     // A slab scan is looked at smaller (analysis_size.hpp), its lattice then fitted to it.
-    cv::Mat smaller;
-    cv::resize(rgb, smaller, detail::analysis_size(rgb.size()), 0, 0, cv::INTER_AREA);
-    const Lattice found = detect_as_is(smaller);
+    const Lattice found = detect_as_is(detail::analysis_copy(rgb));
     if (found.kind == LatticeKind::Stochastic) return found;
     return scaled_up(found, rgb, scale);
 }

@@ -170,13 +170,7 @@ TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one 
 TEST_CASE("a tile's spoils are counted through its reprint", "[jobs]") {
     test::TempDir dir;
     jobs::JobStore store((dir.path() / "jobs.db").string());
-    jobs::JobSpec spec;
-    spec.map = "/x.tjmap";
-    spec.seed = 1;
-    spec.tiles = 3;
-    spec.tile_width_mm = spec.tile_height_mm = 100;
-    spec.dpi = 20;
-    const jobs::Job job = store.add_job(spec);
+    const jobs::Job job = store.add_job(small_spec(3));
     CHECK(store.times_spoiled(job.id, 0) == 0);  // not sent yet
     store.mark_sending(job.id, 0, 1);
     store.mark_sent(job.id, 0);

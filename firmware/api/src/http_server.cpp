@@ -166,10 +166,12 @@ bool HttpServer::evict_idle(const std::string& address) {
     };
     Connection* victim = nullptr;
     for (Connection* c : connections_)
-        if (!c->shut && (c->reading_body || !c->in_request) && !request_waiting(c) &&
+        // The socket is asked last: only of a connection that would be the victim so far.
+        if (!c->shut && (c->reading_body || !c->in_request) &&
             (address.empty() || c->address == address) &&
             (!victim || rank(c) < rank(victim) ||
-             (rank(c) == rank(victim) && c->phase_start < victim->phase_start)))
+             (rank(c) == rank(victim) && c->phase_start < victim->phase_start)) &&
+            !request_waiting(c))
             victim = c;
     if (!victim) return false;
     victim->shut = true;
