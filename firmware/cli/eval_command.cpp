@@ -37,9 +37,11 @@ namespace tilejet::cli {
 
 namespace {
 
-// Periodicity looks at the top-left corner of the laid wall, at most this size: several cell
-// periods of any practical cell, and an FFT that takes well under a second.
+// Periodicity looks at the top-left corner of the laid wall, this size or four cells across when
+// that is more (lags reach half the window, so a window of 1024 px saw no repeat of a 640 px
+// cell), at most the wall: an FFT of a few seconds at most.
 constexpr int kPeriodicityWindow = 1024;
+constexpr int kPeriodicityCells = 4;
 constexpr size_t kEnergySamples = 30000;
 constexpr double kCompletenessArea = 1 << 20;  // px of wall the exemplar is looked for in, at least
 constexpr double kCanvasMillimetres = 2000;    // the factory canvas: 2 m x 2 m
@@ -233,8 +235,10 @@ void run_eval(const EvalOptions& o) {
     synth::WallSpec spec{o.tiles, {tile.width, tile.height}, o.columns, o.seed, o.threads};
     if (spec.columns <= 0) spec.columns = int(std::ceil(std::sqrt(double(o.tiles))));
     const int rows = (o.tiles + spec.columns - 1) / spec.columns;
-    shared.periodicity_window = {std::min(kPeriodicityWindow, spec.columns * tile.width),
-                                 std::min(kPeriodicityWindow, rows * tile.height)};
+    const int periodicity_side =
+        std::max(kPeriodicityWindow, kPeriodicityCells * std::max(map.cell_width, map.cell_height));
+    shared.periodicity_window = {std::min(periodicity_side, spec.columns * tile.width),
+                                 std::min(periodicity_side, rows * tile.height)};
 
     progress.say("exemplar: patch index, statistics, periodicity reference");
     shared.energy = std::make_unique<synth::TextureEnergy>(shared.exemplar, o.threads);
