@@ -16,7 +16,10 @@ namespace {
 
 enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream };
 
-// Block searches look at a random window of the source this many positions across.
+// Block searches look at a random window of the source this many positions across, or twice the
+// block when that is more: in a window narrower than that, a 480 px block of a 1843 px source
+// (the demo design at 360 dpi) found no continuation of a vein it had to continue, and its cut
+// ran along the overlap's edge: white shards with straight sides.
 constexpr int kSearchWindow = 384;
 // Each block takes the best seam of this many best-matching windows.
 constexpr size_t kCutCandidates = 6;
@@ -29,6 +32,15 @@ constexpr size_t kImageBatch = 2;
 // its veins and its colours in every part of the set (1.5 made the demo design's periodicity
 // 1.39 against 1.07, and its texture energy no better).
 constexpr double kUsageCost = 0.5;
+// A source's few conspicuous features (the demo design's one white vein) catch the eye wherever
+// they recur: a source pixel further from the source's mean colour than this many standard
+// deviations (squared) is conspicuous...
+constexpr double kConspicuousZ2 = 2.0;
+// ...and copying it costs this many times its squared excess (in units of the source's
+// variance) for every time it was copied before, so the set shows it about once. A strip pays
+// it for the first copy too: each strip shows at a quarter of all cell edges (K = 2), and the
+// vein copied into one drew a white tick at every fourth edge.
+constexpr double kConspicuousCost = 1.0;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
 struct Canvas {
@@ -42,6 +54,10 @@ struct Canvas {
     // How often each source pixel has been copied into the set so far (CV_32F), or none.
     const cv::Mat* usage = nullptr;
     double usage_weight = 0;  // match cost of copying a pixel once more, per overlap pixel
+    // How conspicuous each source pixel is, as a match cost (CV_32F), or none: each use of it
+    // costs that much again, and the first one too in what neighbours share.
+    const cv::Mat* conspicuous = nullptr;
+    bool shared = false;
 
     explicit Canvas(cv::Size size)
         : rgb(size, CV_8UC3, cv::Scalar::all(0)),
@@ -126,6 +142,16 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     cv::Scalar mean, deviation;
     cv::meanStdDev(source_lab, mean, deviation);
     usage_weight_ = kUsageCost * deviation.dot(deviation);
+    {
+        // Squared CIELab distance from the mean, less what is still typical, in units of the
+        // source's variance, times that variance: a match cost per pixel.
+        const double variance = deviation.dot(deviation);
+        cv::Mat difference = source_lab - mean;
+        std::vector<cv::Mat> channels;
+        cv::split(difference.mul(difference), channels);
+        cv::Mat z2 = (channels[0] + channels[1] + channels[2]) / variance;
+        conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
+    }
     choose_corner_blocks();
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
@@ -195,27 +221,34 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // the source's veins and grains go missing.
     cv::Mat penalty;
     if (canvas.usage) {
+        // Per pixel of the window, in the match's units: uses count per pixel of the overlap
+        // (the match's sum runs over it), a conspicuous pixel whole (it shows wherever the
+        // window's copy does).
+        const double per_pixel = cv::sum(mask)[0] / double(rect.area());
         cv::Mat used = canvas.usage->clone();
         count_uses(used, canvas.placed);
+        cv::Mat cost = (canvas.usage_weight * per_pixel) * used;
+        if (canvas.conspicuous) {
+            cost += canvas.conspicuous->mul(canvas.shared ? used + 1 : used);
+        }
         cv::Mat sums;
-        cv::integral(used, sums, CV_64F);
+        cv::integral(cost, sums, CV_64F);
         const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
         penalty.create(py, px, CV_32F);
-        const double per_use = canvas.usage_weight * cv::sum(mask)[0] / double(rect.area());
         for (int y = 0; y < py; ++y)
-            for (int x = 0; x < px; ++x) {
-                const double s = sums.at<double>(y + rect.height, x + rect.width) -
-                                 sums.at<double>(y, x + rect.width) -
-                                 sums.at<double>(y + rect.height, x) + sums.at<double>(y, x);
-                penalty.at<float>(y, x) = float(per_use * s);
-            }
+            for (int x = 0; x < px; ++x)
+                penalty.at<float>(y, x) =
+                    float(sums.at<double>(y + rect.height, x + rect.width) -
+                          sums.at<double>(y, x + rect.width) - sums.at<double>(y + rect.height, x) +
+                          sums.at<double>(y, x));
     }
     OffsetSearch search{source_lab,
                         [&](cv::Point corner) {
                             return (forbidden.empty() || !forbidden.at<uint8_t>(corner)) &&
                                    (!lattice || lattice->allows(corner - rect.tl() - origin));
                         },
-                        std::max(4, overlap / 2), kSearchWindow};
+                        std::max(4, overlap / 2),
+                        std::max(kSearchWindow, 2 * std::max(rect.width, rect.height))};
     if (!penalty.empty()) search.penalty = &penalty;
     std::vector<cv::Point> candidates;
     if (cv::countNonZero(mask) > 0)
@@ -280,12 +313,15 @@ void quilt_area(Canvas& canvas, const cv::Rect& area, cv::Size block, int overla
 }  // namespace
 
 void CellSet::choose_corner_blocks() {
-    // Spread over the source: each the farthest of a few random draws from those taken.
+    // Spread over the source: each the farthest of a few random draws from those taken, among
+    // the draws with nothing conspicuous (else the least conspicuous): a core shows whole at
+    // every vertex of its colour, and the demo design's dark cores drew a dot at every other
+    // vertex.
     Rng rng(hash_combine(params_.seed, kCornerStream));
     const int x_hi = source_rgb_.cols - 2 * c_, y_hi = source_rgb_.rows - 2 * c_;
     for (int c = 0; c < k_; ++c) {
         cv::Point best(-1, -1);
-        double best_distance = -1;
+        double best_distance = -1, best_conspicuous = 0;
         for (int draw = 0; draw < 32; ++draw) {
             cv::Point s(rng.range(0, x_hi), rng.range(0, y_hi));
             // On a lattice the vertex, w px inside the block, copies a lattice translation of
@@ -297,7 +333,12 @@ void CellSet::choose_corner_blocks() {
             double distance = 1e300;
             for (const cv::Point& other : corner_source_)
                 distance = std::min(distance, cv::norm(s - other));
-            if (distance > best_distance) best = s, best_distance = distance;
+            const double conspicuous =
+                cv::sum(conspicuous_(cv::Rect(s, cv::Size(2 * c_, 2 * c_))))[0];
+            const bool better = best.x < 0 || (conspicuous == 0 && best_conspicuous == 0
+                                                   ? distance > best_distance
+                                                   : conspicuous < best_conspicuous);
+            if (better) best = s, best_distance = distance, best_conspicuous = conspicuous;
         }
         if (best.x < 0) throw SynthError("no lattice-aligned corner block fits in the source");
         corner_source_.push_back(best);
@@ -323,6 +364,8 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
     canvas.locked.setTo(255, canvas.known);
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
+    canvas.conspicuous = &conspicuous_;
+    canvas.shared = true;
     // The strip's top-left pixel lies (w, w) before its first vertex, a lattice point.
     quilt_area(canvas, cv::Rect({0, 0}, size), {strip_block_, strip_block_}, strip_overlap_,
                source_rgb_, source_lab_, params_.lattice, {-w_, -w_}, rng);
@@ -382,6 +425,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     canvas.avoid = &avoid;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
+    canvas.conspicuous = &conspicuous_;
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
     quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
                params_.lattice, {0, 0}, rng);
