@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "tilejet/drivers/factory.hpp"
 
@@ -29,14 +28,28 @@ std::pair<std::string, std::uint64_t> heads_name(const HeadEntry& e) {
 
 }  // namespace
 
+LoopRig configured_rig(const DaemonConfig& config) {
+    LoopRig rig;
+    rig.make_line = [drivers = config.drivers] { return drivers::make_line_control(drivers); };
+    rig.gpio = drivers::make_gpio(config.drivers);
+    rig.heads = drivers::make_head_sink(config.drivers);
+    return rig;
+}
+
 PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller)
+    : PrintLoop(config, controller, configured_rig(config)) {}
+
+PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller, LoopRig rig)
     : config_(config),
       print_(config.print),
       controller_(controller),
-      gpio_(drivers::make_gpio(config.drivers)),
-      heads_(drivers::make_head_sink(config.drivers)),
+      clock_(*rig.clock),
+      make_line_(std::move(rig.make_line)),
+      gpio_(std::move(rig.gpio)),
+      heads_(std::move(rig.heads)),
       store_(config.storage.database),
-      render_(config.render.threads, config.render.queue_tiles),
+      render_(config.render.threads, config.render.queue_tiles,
+              rig.render_in_turn ? RenderAhead::Mode::in_caller : RenderAhead::Mode::threads),
       governor_(config.print),
       counter_(config.drivers.line) {
     seq_ = store_.last_seq();
@@ -54,36 +67,50 @@ void PrintLoop::reload(const PrintConfig& print) {
 }
 
 void PrintLoop::run() {
-    // libmodbus contexts belong to one thread: the loop's own.
-    line_ = drivers::make_line_control(config_.drivers);
-    std::string last_error;
-    while (!done_) {
-        try {
-            turn();
-        } catch (const LinkError& e) {
-            on_link_lost(e.what());
-        } catch (const std::exception& e) {
-            // Nothing here may end the loop: the line must stay controlled. Log, wait, retry.
-            if (e.what() != last_error) log_line("error: " + std::string(e.what()));
-            last_error = e.what();
-            try {
-                gpio_->set(GpioOutput::print_enable, false);
-            } catch (const std::exception&) {
-                // The GPIO chip is gone too; its own side drops print-enable (PROTOCOLS.md).
-            }
-            mirror_.doubt();
-            state_.set(LineStatus::faulted, e.what());
-            publish();
-            if (draining_) break;  // stopping anyway: a broken line must not hold up SIGTERM
-            std::this_thread::sleep_for(100ms);
-        }
-        controller_.heartbeat_ns =
-            std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
-                .count();
+    start();
+    while (step()) {
     }
+    finish();
+}
+
+void PrintLoop::start() {
+    line_ = make_line_();
+}
+
+bool PrintLoop::step() {
+    try {
+        turn();
+    } catch (const LinkError& e) {
+        on_link_lost(e.what());
+    } catch (const std::exception& e) {
+        // Nothing here may end the loop: the line must stay controlled. Log, wait, retry.
+        if (e.what() != last_error_) log_line("error: " + std::string(e.what()));
+        last_error_ = e.what();
+        try {
+            gpio_->set(GpioOutput::print_enable, false);
+        } catch (const std::exception&) {
+            // The GPIO chip is gone too; its own side drops print-enable (PROTOCOLS.md).
+        }
+        mirror_.doubt();
+        state_.set(LineStatus::faulted, e.what());
+        publish();
+        if (draining_)
+            done_ = true;  // stopping anyway: a broken line must not hold up SIGTERM
+        else
+            clock_.sleep_for(100ms);
+    }
+    // The watchdog's heartbeat is real time whatever clock the loop runs on: it tells that the
+    // thread is alive.
+    controller_.heartbeat_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::steady_clock::now().time_since_epoch())
+                                   .count();
+    return !done_;
+}
+
+void PrintLoop::finish() {
     try {
         gpio_->set(GpioOutput::print_enable, false);
-        line_->stop();
+        if (line_) line_->stop();
     } catch (const std::exception& e) {
         log_line("could not park the line on the way out: " + std::string(e.what()));
     }
@@ -110,7 +137,7 @@ void PrintLoop::turn() {
     // still end the daemon (on_link_lost stops a drain).
     if (controller_.terminate && !draining_) {
         draining_ = true;
-        drain_deadline_ = Clock::now() + print_.drain_timeout;
+        drain_deadline_ = clock_.now() + print_.drain_timeout;
         log_line("SIGTERM: finishing the tiles in the heads, then stopping");
     }
     if (!poll_line()) {
@@ -121,16 +148,19 @@ void PrintLoop::turn() {
         if (line_state_.running) line_->stop();
         state_.set(LineStatus::estop, gpio_->estop_latched() ? "e-stop: release it and acknowledge"
                                                              : "e-stop chain open (PLC)");
+        stop_job_while_held();
         if (draining_) done_ = true;
     } else if (const auto& fault = counter_.latched_fault()) {
         // Held until the operator acknowledges: the PLC that lied once may lie again.
         if (line_state_.running) line_->stop();
         set_print_enable(false);
         state_.set(LineStatus::faulted, *fault + ": acknowledge to resync");
+        stop_job_while_held();
         if (draining_) done_ = true;
     } else if (line_state_.fault_code != 0) {
         gpio_->set(GpioOutput::print_enable, false);
         state_.set(LineStatus::faulted, "PLC fault " + std::to_string(line_state_.fault_code));
+        stop_job_while_held();
         if (draining_) done_ = true;
     } else {
         select_job();
@@ -183,7 +213,7 @@ void PrintLoop::handle_gpio_events(std::chrono::milliseconds wait) {
 }
 
 bool PrintLoop::poll_line() {
-    const Clock::time_point start = Clock::now();
+    const Clock::time_point start = clock_.now();
     // Tiles that arrive after this read get the print-enable of this moment, so it is taken
     // now, not after the read and the store writes: an e-stop latched in between (another
     // thread) would make a tile printed meanwhile look unprinted, and it would go out twice.
@@ -198,7 +228,7 @@ bool PrintLoop::poll_line() {
         on_link_lost(e.what());
         return false;
     }
-    const Clock::duration took = Clock::now() - start;
+    const Clock::duration took = clock_.now() - start;
     if (!link_up_) {
         link_up_ = true;
         log_line("PLC link up (tile counter " + std::to_string(line_state_.tile_counter) + ")");
@@ -285,7 +315,7 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         line_->stop();
         if (counter_.known()) {
             const CounterWatch::Verdict verdict = counter_.judge(
-                {st.tile_counter, double(st.speed_mm_s), Clock::now(), {}}, fastest_asked());
+                {st.tile_counter, double(st.speed_mm_s), clock_.now(), {}}, fastest_asked());
             if (verdict.fault)
                 on_counter_fault(*verdict.fault);
             else if (verdict.arrived > 0)
@@ -334,8 +364,8 @@ void PrintLoop::select_job() {
         // The API may have cancelled it; re-read now and then.
         return;
     }
-    if (Clock::now() < next_job_check_) return;
-    next_job_check_ = Clock::now() + 100ms;
+    if (clock_.now() < next_job_check_) return;
+    next_job_check_ = clock_.now() + 100ms;
     auto job = store_.active_job();
     if (!job) return;
     try {
@@ -380,7 +410,7 @@ void PrintLoop::print_turn() {
     check_job_done();
     if (draining_) {
         const bool holds_job_tiles = mirror_.holds_tiles();
-        if (!holds_job_tiles || !want_print_ || Clock::now() > drain_deadline_ ||
+        if (!holds_job_tiles || !want_print_ || clock_.now() > drain_deadline_ ||
             !line_state_.running) {
             if (holds_job_tiles)
                 log_line("SIGTERM: stopping with " + std::to_string(mirror_.size()) +
@@ -440,10 +470,10 @@ void PrintLoop::print_turn() {
     }
     // Running: send only into the quiet time before the next tile can arrive.
     while (int(mirror_.size()) < print_.head_buffer_tiles && !stop_job_ &&
-           Clock::now() < deadline(mirror_.size()) && send_next(true)) {
+           clock_.now() < deadline(mirror_.size()) && send_next(true)) {
     }
     if (!mirror_.certain()) return;
-    if (render_.ready() >= render_.capacity() && governor_.render_full(Clock::now())) {
+    if (render_.ready() >= render_.capacity() && governor_.render_full(clock_.now())) {
         line_->set_speed(std::uint16_t(governor_.speed()));
         log_line("render-ahead full: conveyor back up to " + std::to_string(governor_.speed()) +
                  " mm/s");
@@ -456,7 +486,7 @@ void PrintLoop::print_turn() {
 }
 
 void PrintLoop::adjust_speed(const std::string& reason) {
-    switch (governor_.render_behind(reason, Clock::now())) {
+    switch (governor_.render_behind(reason, clock_.now())) {
         case SpeedGovernor::Change::slower:
             try {
                 line_->set_speed(std::uint16_t(governor_.speed()));
@@ -485,7 +515,7 @@ void PrintLoop::start_conveyor() {
     line_->run();
     run_commanded_ = true;
     // Where the belt stands is unknown: a tile may reach the heads right away.
-    earliest_next_ = Clock::now();
+    earliest_next_ = clock_.now();
     state_.set(LineStatus::printing, job_->name());
 }
 
@@ -546,9 +576,9 @@ PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations&
     }
     store_.mark_sent(entry.job, entry.index);
     mirror_.sent(entry);
-    if (deadline_applies && Clock::now() > deadline(mirror_.size() - 1)) {
+    if (deadline_applies && clock_.now() > deadline(mirror_.size() - 1)) {
         log_line("tile " + std::to_string(entry.index) + " reached the heads " +
-                 ms_text(Clock::now() - deadline(mirror_.size() - 1)) +
+                 ms_text(clock_.now() - deadline(mirror_.size() - 1)) +
                  " too close to a tile's arrival: resync");
         mirror_.doubt();
     }
@@ -700,13 +730,26 @@ void PrintLoop::check_job_done() {
     job_ = job;
     // Done once the last tile is clear of the heads: an e-stop before that spoils it.
     const bool last_under_heads = last_printed_ && last_printed_->entry.job == job->id &&
-                                  Clock::now() - last_printed_->arrived_after < under_heads();
+                                  clock_.now() - last_printed_->arrived_after < under_heads();
     if (job->printed >= job->spec.tiles && !last_under_heads) {
         end_job(jobs::JobStatus::done, "",
                 job->name() + " done: " + std::to_string(job->printed) + " tiles printed, " +
                     std::to_string(job->spoiled) + " spoiled and reprinted, " +
                     std::to_string(job->missed_line_tiles) + " line tiles passed unprinted");
     }
+}
+
+void PrintLoop::stop_job_while_held() {
+    // The line is held (e-stop, fault) until the operator acknowledges; a stop must not wait for
+    // that. The job's tiles still in the heads stay `sent`: the resync before the next start
+    // finds out which of them print.
+    if (!job_) return;
+    const auto job = store_.job(job_->id);
+    if (!stop_job_ && !(job && job->status == jobs::JobStatus::cancelled)) return;
+    end_job(jobs::JobStatus::cancelled, "stopped by the operator while the line was held",
+            job_->name() + " stopped while the line was held (" + state_.reason() +
+                "): " + std::to_string(job ? job->printed : 0) + " of " +
+                std::to_string(job_->spec.tiles) + " tiles printed");
 }
 
 void PrintLoop::end_job(jobs::JobStatus status, const std::string& message,

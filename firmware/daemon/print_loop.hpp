@@ -15,6 +15,7 @@
 //     tiles they still hold. The heads' buffer is a FIFO, so those are the newest of the tiles
 //     the store says were sent; the older ones were printed.
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,7 @@
 #include "daemon_config.hpp"
 #include "head_mirror.hpp"
 #include "line_state.hpp"
+#include "loop_clock.hpp"
 #include "render_ahead.hpp"
 #include "speed_governor.hpp"
 #include "tilejet/drivers/gpio.hpp"
@@ -33,17 +35,40 @@
 
 namespace tilejet::daemon {
 
+// What a print loop runs on. The daemon's: the configured drivers, the steady clock and render
+// threads (configured_rig). A test's: a VirtualLine's drivers and stepped clock, and tiles
+// rendered in the turn that takes them, so that every run goes the same way.
+struct LoopRig {
+    // Called on the loop's own thread (libmodbus contexts belong to one thread).
+    std::function<std::unique_ptr<drivers::LineControl>()> make_line;
+    std::unique_ptr<drivers::Gpio> gpio;
+    std::unique_ptr<drivers::HeadSink> heads;
+    LoopClock* clock = &LoopClock::steady();
+    bool render_in_turn = false;
+};
+
+LoopRig configured_rig(const DaemonConfig& config);
+
 class PrintLoop {
   public:
     PrintLoop(const DaemonConfig& config, Controller& controller);
+    PrintLoop(const DaemonConfig& config, Controller& controller, LoopRig rig);
     ~PrintLoop();
-    // Runs until controller.terminate is set and the heads are drained (or drain_timeout).
+    // Runs until controller.terminate is set and the heads are drained (or drain_timeout):
+    // start, step until it says done, finish.
     void run();
+    // Makes the PLC link, on the calling thread: the thread that steps.
+    void start();
+    // One turn: commands, GPIO events (waits up to [print] poll for them), the PLC's state,
+    // printing. False once SIGTERM's drain is over.
+    bool step();
+    // Print-enable low and the conveyor stopped, on the way out.
+    void finish();
     // SIGHUP: the [print] speeds and timing (takes effect at the next turn).
     void reload(const PrintConfig& print);
 
   private:
-    using Clock = std::chrono::steady_clock;
+    using Clock = LoopClock::Clock;
 
     void turn();
     void handle_commands();
@@ -72,6 +97,8 @@ class PrintLoop {
     void start_conveyor();
     void check_job_done();
     void end_job(jobs::JobStatus status, const std::string& message, const std::string& log);
+    // An operator's stop while an e-stop or a fault holds the line: the job ends now.
+    void stop_job_while_held();
     // Rendering fell behind: slower, or stopped (the governor says which).
     void adjust_speed(const std::string& reason);
     Clock::duration pitch_time() const;
@@ -85,6 +112,8 @@ class PrintLoop {
     std::optional<PrintConfig> reload_;
     std::mutex reload_mutex_;
     Controller& controller_;
+    LoopClock& clock_;
+    std::function<std::unique_ptr<drivers::LineControl>()> make_line_;
     std::unique_ptr<drivers::LineControl> line_;
     std::unique_ptr<drivers::Gpio> gpio_;
     std::unique_ptr<drivers::HeadSink> heads_;
@@ -118,6 +147,7 @@ class PrintLoop {
     bool draining_ = false;
     Clock::time_point drain_deadline_{};
     bool done_ = false;
+    std::string last_error_;
     Clock::time_point next_job_check_{};
 };
 

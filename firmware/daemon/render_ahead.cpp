@@ -26,7 +26,9 @@ void yield_to_the_line() {
 
 }  // namespace
 
-RenderAhead::RenderAhead(int threads, int capacity) : capacity_(std::max(1, capacity)) {
+RenderAhead::RenderAhead(int threads, int capacity, Mode mode)
+    : capacity_(std::max(1, capacity)), mode_(mode) {
+    if (mode_ == Mode::in_caller) return;
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
     for (int i = 0; i < threads; ++i)
         workers_.emplace_back([this] { work(); });
@@ -65,6 +67,14 @@ void RenderAhead::want(std::shared_ptr<const TileRenderer> renderer,
 std::optional<Separations> RenderAhead::take(std::int64_t job, std::int64_t index) {
     std::lock_guard lock(mutex_);
     auto it = slots_.find({job, index});
+    if (mode_ == Mode::in_caller && it != slots_.end() && !it->second.tile && renderer_) {
+        try {
+            it->second.tile = renderer_->render(index, 1, {});
+        } catch (const std::exception& e) {
+            error_ = "tile " + std::to_string(index) + ": " + e.what();
+            return std::nullopt;
+        }
+    }
     if (it == slots_.end() || !it->second.tile) return std::nullopt;
     std::optional<Separations> tile = std::move(it->second.tile);
     slots_.erase(it);
@@ -74,6 +84,7 @@ std::optional<Separations> RenderAhead::take(std::int64_t job, std::int64_t inde
 
 int RenderAhead::ready() const {
     std::lock_guard lock(mutex_);
+    if (mode_ == Mode::in_caller) return int(wanted_.size());
     int n = 0;
     for (const Key& k : wanted_) {
         auto it = slots_.find(k);

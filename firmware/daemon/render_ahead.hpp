@@ -20,7 +20,11 @@ namespace tilejet::daemon {
 
 class RenderAhead {
   public:
-    RenderAhead(int threads, int capacity);
+    // threads: tiles render on a pool of `threads` (0: one per core) while the loop does other
+    // things. in_caller: a wanted tile renders when it is taken, in the caller's thread, so
+    // every wanted tile counts as ready: a test on a stepped clock sees the same run every time.
+    enum class Mode { threads, in_caller };
+    RenderAhead(int threads, int capacity, Mode mode = Mode::threads);
     ~RenderAhead();
     RenderAhead(const RenderAhead&) = delete;
     RenderAhead& operator=(const RenderAhead&) = delete;
@@ -49,6 +53,7 @@ class RenderAhead {
     void work();
 
     int capacity_;
+    Mode mode_;
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     bool stop_ = false;
