@@ -52,6 +52,8 @@ PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller, LoopRig
               rig.render_in_turn ? RenderAhead::Mode::in_caller : RenderAhead::Mode::threads),
       governor_(config.print),
       counter_(config.drivers.line) {
+    if (rig.render_in_turn && rig.render_time > Clock::duration::zero())
+        render_.pace(clock_, rig.render_time);
     seq_ = store_.last_seq();
     // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
     // before the first send.

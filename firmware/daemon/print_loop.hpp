@@ -45,6 +45,8 @@ struct LoopRig {
     std::unique_ptr<drivers::HeadSink> heads;
     LoopClock* clock = &LoopClock::steady();
     bool render_in_turn = false;
+    // With render_in_turn: each tile takes this long of the clock's time to render (0: none).
+    LoopClock::Clock::duration render_time{};
 };
 
 LoopRig configured_rig(const DaemonConfig& config);

@@ -42,6 +42,16 @@ RenderAhead::~RenderAhead() {
     wake_.notify_all();
 }
 
+void RenderAhead::pace(const LoopClock& clock, LoopClock::Clock::duration per_tile) {
+    std::lock_guard lock(mutex_);
+    pace_clock_ = &clock;
+    per_tile_ = per_tile;
+}
+
+bool RenderAhead::due(const Slot& slot) const {
+    return !pace_clock_ || slot.ready_at <= pace_clock_->now();
+}
+
 void RenderAhead::want(std::shared_ptr<const TileRenderer> renderer,
                        const std::vector<std::int64_t>& next) {
     std::lock_guard lock(mutex_);
@@ -59,8 +69,13 @@ void RenderAhead::want(std::shared_ptr<const TileRenderer> renderer,
         else
             ++it;
     }
-    for (const Key& k : wanted_)
-        slots_.try_emplace(k);
+    for (const Key& k : wanted_) {
+        const auto [it, added] = slots_.try_emplace(k);
+        if (added && pace_clock_) {
+            paced_until_ = std::max(paced_until_, pace_clock_->now()) + per_tile_;
+            it->second.ready_at = paced_until_;
+        }
+    }
     wake_.notify_all();
 }
 
@@ -68,6 +83,7 @@ std::optional<Separations> RenderAhead::take(std::int64_t job, std::int64_t inde
     std::lock_guard lock(mutex_);
     auto it = slots_.find({job, index});
     if (mode_ == Mode::in_caller && it != slots_.end() && !it->second.tile && renderer_) {
+        if (!due(it->second)) return std::nullopt;
         try {
             it->second.tile = renderer_->render(index, 1, {});
         } catch (const std::exception& e) {
@@ -84,7 +100,11 @@ std::optional<Separations> RenderAhead::take(std::int64_t job, std::int64_t inde
 
 int RenderAhead::ready() const {
     std::lock_guard lock(mutex_);
-    if (mode_ == Mode::in_caller) return int(wanted_.size());
+    if (mode_ == Mode::in_caller)
+        return int(std::count_if(wanted_.begin(), wanted_.end(), [&](const Key& k) {
+            const auto it = slots_.find(k);
+            return it != slots_.end() && due(it->second);
+        }));
     int n = 0;
     for (const Key& k : wanted_) {
         auto it = slots_.find(k);

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "loop_clock.hpp"
 #include "separations.hpp"
 #include "tile_renderer.hpp"
 
@@ -25,6 +26,10 @@ class RenderAhead {
     // every wanted tile counts as ready: a test on a stepped clock sees the same run every time.
     enum class Mode { threads, in_caller };
     RenderAhead(int threads, int capacity, Mode mode = Mode::threads);
+    // in_caller: a tile is ready `per_tile` of `clock`'s time after the tile before it, or
+    // after it was first wanted, as if one render thread of that speed rendered ahead: on a
+    // stepped clock a test makes rendering fall behind the line, the same way every time.
+    void pace(const LoopClock& clock, LoopClock::Clock::duration per_tile);
     ~RenderAhead();
     RenderAhead(const RenderAhead&) = delete;
     RenderAhead& operator=(const RenderAhead&) = delete;
@@ -49,11 +54,17 @@ class RenderAhead {
     struct Slot {
         bool working = false;
         std::optional<Separations> tile;
+        LoopClock::Clock::time_point ready_at{};  // paced in_caller only
     };
+    // Paced in_caller: whether the slot's time has come.
+    bool due(const Slot& slot) const;
     void work();
 
     int capacity_;
     Mode mode_;
+    const LoopClock* pace_clock_ = nullptr;
+    LoopClock::Clock::duration per_tile_{};
+    LoopClock::Clock::time_point paced_until_{};  // when the paced render thread is free
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     bool stop_ = false;

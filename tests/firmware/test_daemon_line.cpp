@@ -2,8 +2,8 @@
 // tile exactly once with the bytes an offline render gives, through SIGKILL and restart, an
 // e-stop and a Modbus link drop.
 #include <catch2/catch.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "daemon_process.hpp"

@@ -202,3 +202,32 @@ TEST_CASE("on the virtual line tiles printed while the counter stuck are not pri
         }
     }
 }
+
+TEST_CASE("rendering slower than the line slows the conveyor, or stops and restarts it",
+          "[loop][render]") {
+    // The line takes a tile every 250 ms at 1000 mm/s, 2.5 s at the slowest 100 mm/s.
+    for (const auto render_time : {400ms, 3000ms}) {
+        DYNAMIC_SECTION("a tile renders in " << render_time.count() << " ms") {
+            test::VirtualRig rig(render_time);
+            const auto id = rig.add_job(24);
+            double slowest = 1e9;
+            bool said_slowed = false, stopped_mid_job = false;
+            REQUIRE(rig.step_until(
+                [&] {
+                    const auto s = rig.snapshot();
+                    if (rig.line().conveyor_running())
+                        slowest = std::min(slowest, rig.line().belt_speed());
+                    else if (printed(rig, id) > 2)
+                        stopped_mid_job = true;
+                    said_slowed |= s.reason.find("slowed") != std::string::npos ||
+                                   s.reason.find("render") != std::string::npos;
+                    return rig.job_done(id);
+                },
+                300s));
+            rig.check_exactly_once(id, 24);
+            CHECK(said_slowed);
+            CHECK(slowest < 1000);
+            if (render_time > 2500ms) CHECK(stopped_mid_job);
+        }
+    }
+}

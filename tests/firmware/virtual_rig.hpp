@@ -52,8 +52,10 @@ inline daemon::DaemonConfig virtual_config(const std::filesystem::path& dir) {
 
 class VirtualRig {
   public:
-    VirtualRig()
-        : config_(virtual_config(dir_.path())),
+    // `render_time`: how long each tile takes to render, on the line's clock (0: no time).
+    explicit VirtualRig(std::chrono::milliseconds render_time = std::chrono::milliseconds(0))
+        : render_time_(render_time),
+          config_(virtual_config(dir_.path())),
           line_(config_.drivers.line, config_.print.head_buffer_tiles),
           clock_(line_) {
         boot();
@@ -76,6 +78,7 @@ class VirtualRig {
         rig.heads = line_.make_heads();
         rig.clock = &clock_;
         rig.render_in_turn = true;
+        rig.render_time = render_time_;
         loop_ = std::make_unique<daemon::PrintLoop>(config_, *controller_, std::move(rig));
         loop_->start();
     }
@@ -154,6 +157,7 @@ class VirtualRig {
     }
 
   private:
+    std::chrono::milliseconds render_time_;
     TempDir dir_;
     daemon::DaemonConfig config_;
     drivers::VirtualLine line_;
