@@ -4,6 +4,7 @@
 #include <opencv2/core/mat.hpp>
 #include <string>
 
+#include "../temp_dir.hpp"
 #include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/sampler.hpp"
 #include "tilejet/synth/texture_map.hpp"
@@ -23,20 +24,6 @@ const synth::TextureMap& small_map();
 // Sampler::sample gives for the same map and seed.
 size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
                              const synth::Region& region, const cv::Mat& rendered);
-
-// A fresh directory under the system temp dir, removed when the object goes away.
-class TempDir {
-  public:
-    TempDir();
-    ~TempDir();
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const std::filesystem::path& path() const { return path_; }
-    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
-  private:
-    std::filesystem::path path_;
-};
 
 void write_file(const std::filesystem::path& path, const std::string& bytes);
 
