@@ -14,6 +14,7 @@
 #include "lab.hpp"
 #include "lattice_alignment.hpp"
 #include "mix64.hpp"
+#include "parallel_for.hpp"
 #include "patch_overlap.hpp"
 #include "pseudo_biclique.hpp"
 #include "quilting.hpp"
@@ -62,26 +63,12 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
         throw SynthError("--colour-gain " + std::to_string(p.colour_gain) + " must be 0 or more");
 }
 
-// Runs body(i) for i in [0, n) on `threads` threads; reports progress from the calling thread.
-template <typename Body>
-void parallel_for(size_t n, int threads, Body body, const BuildProgress& progress,
-                  std::string_view stage) {
-    std::atomic<size_t> next{0}, done{0};
-    std::vector<std::jthread> workers;
-    for (int t = 0; t < threads; ++t)
-        workers.emplace_back([&, t] {
-            for (size_t i; (i = next.fetch_add(1)) < n;) {
-                body(i, t);
-                done.fetch_add(1);
-            }
-        });
-    if (progress)
-        while (done.load() < n) {
-            progress(stage, done.load(), n);
-            std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        }
-    workers.clear();
-    if (progress) progress(stage, n, n);
+// Progress of one stage, for parallel_for; none without a listener (parallel_for then does not
+// poll).
+std::function<void(size_t)> stage_progress(const BuildProgress& progress, std::string_view stage,
+                                           size_t total) {
+    if (!progress) return {};
+    return [&progress, stage, total](size_t done) { progress(stage, done, total); };
 }
 
 std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParams& params,
@@ -90,8 +77,8 @@ std::vector<Patch> best_candidates(const CandidateSpace& space, const BuildParam
     const uint64_t stream = hash_combine(params.seed, kCandidateStream);
     parallel_for(
         found.size(), threads,
-        [&](size_t i, int) { found[i] = make_candidate(space, hash_combine(stream, i)); }, progress,
-        "candidate patches");
+        [&](size_t i) { found[i] = make_candidate(space, hash_combine(stream, i)); },
+        stage_progress(progress, "candidate patches", found.size()));
 
     // Best P by seam cost alone would keep only tiny patches in flat areas (short cuts there
     // are cheap) and leave the cell image showing almost everywhere. So candidates are ranked
@@ -224,14 +211,14 @@ void make_patch_sets(CellImage& image, const CandidateSpace& space, const BuildP
     std::vector<uint8_t> conflict(n * n, 0);
     parallel_for(
         n, threads,
-        [&](size_t u, int) {
+        [&](size_t u) {
             for (size_t v = 0; v < n; ++v)
                 conflict[u * n + v] = patches_overlap(kept[u], kept[v], cw, 0) ||
                                       patches_overlap(kept[u], kept[v], -cw, 0) ||
                                       patches_overlap(kept[u], kept[v], 0, ch) ||
                                       patches_overlap(kept[u], kept[v], 0, -ch);
         },
-        progress, "A/B conflicts");
+        stage_progress(progress, "A/B conflicts", n));
     Rng split_rng(hash_combine(params.seed, kSplitStream));
     const BicliqueSplit split = split_pseudo_biclique(n, conflict, split_rng);
     if (split.a.empty() || split.b.empty())

@@ -4,7 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../lab.hpp"
-#include "parallel_for.hpp"
+#include "../parallel_for.hpp"
 
 namespace tilejet::synth {
 

@@ -7,7 +7,7 @@
 #include <unordered_set>
 
 #include "../mix64.hpp"
-#include "parallel_for.hpp"
+#include "../parallel_for.hpp"
 #include "tilejet/synth/error.hpp"
 
 namespace tilejet::synth {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "../lab.hpp"
-#include "parallel_for.hpp"
+#include "../parallel_for.hpp"
 
 namespace tilejet::synth {
 

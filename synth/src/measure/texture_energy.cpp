@@ -8,7 +8,7 @@
 
 #include "../lab.hpp"
 #include "../mix64.hpp"
-#include "parallel_for.hpp"
+#include "../parallel_for.hpp"
 #include "tilejet/synth/error.hpp"
 
 namespace tilejet::synth {

@@ -4,7 +4,7 @@
 
 #include "../diamond.hpp"
 #include "../mix64.hpp"
-#include "parallel_for.hpp"
+#include "../parallel_for.hpp"
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/patch_labels.hpp"
 #include "tilejet/synth/quilt.hpp"
