@@ -20,28 +20,11 @@
 #include <thread>
 #include <vector>
 
+#include "../temp_dir.hpp"
 #include "tilejet/drivers/config.hpp"
 #include "tilejet/drivers/sim/sim_control.hpp"
 
 namespace tilejet::test {
-
-// A private folder, removed with everything in it.
-class TempDir {
-  public:
-    TempDir() {
-        std::string pattern = (std::filesystem::temp_directory_path() / "tjline-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        std::filesystem::remove_all(path_, ignored);
-    }
-    const std::filesystem::path& path() const { return path_; }
-
-  private:
-    std::filesystem::path path_;
-};
 
 struct LinesimOptions {
     double speed_mm_s = 1000;
