@@ -41,9 +41,13 @@ constexpr double kUsageCost = 0.5;
 // 1.02; gravel's texture energy 1.31 against 1.18). Lattices (grout lines) are left out.
 constexpr double kConspicuousZ2 = 2.0;
 // Cells larger than this (those of exemplars of 1024 px and more) get the cost of conspicuous
-// pixels and the wider block search. On the corpus's 256-320 px cells the cost made things worse
-// (limestone's periodicity 0.36 to 1.28, the 256 px demo design's 0.96 to 1.5: strips from its
-// few calm places, alike at every fourth edge), and those designs showed no repeated feature.
+// pixels and the wider block search, when the set must copy its source more than once. Where it
+// need not (an 8192 px slab: its set covers a tenth of it) features do not recur, and the wide
+// search made blocks converge on the source's calm places (the wall's mean colour 6.4 ΔE from
+// the exemplar's against 3.2, texture energy 1.05 against 0.82). On the corpus's 256-320 px cells
+// the cost made things worse (limestone's periodicity 0.36 to 1.28, the 256 px demo design's 0.96
+// to 1.5: strips from its few calm places, alike at every fourth edge), and those designs showed no
+// repeated feature.
 constexpr int kLargeCell = 320;
 // ...and copying it costs this many times its squared excess (in units of the source's
 // variance) for every time it was copied before, so the set shows it about once. A strip pays
@@ -153,7 +157,11 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     cv::Scalar mean, deviation;
     cv::meanStdDev(source_lab, mean, deviation);
     usage_weight_ = kUsageCost * deviation.dot(deviation);
-    large_ = side > kLargeCell;
+    // How many times over the set's images cover the source: the demo design at 360 dpi covers
+    // its 1843 px source twice, an 8192 px slab a tenth of its source.
+    const double reuse =
+        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
+    large_ = side > kLargeCell && reuse >= 1;
     if (large_) {
         // Squared CIELab distance from the mean, less what is still typical, in units of the
         // source's variance, times that variance: a match cost per pixel.
@@ -163,14 +171,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         cv::split(difference.mul(difference), channels);
         cv::Mat z2 = (channels[0] + channels[1] + channels[2]) / variance;
         cv::GaussianBlur(z2, z2, {0, 0}, std::max(1.0, side / 16.0));
-        // Only a set that must copy its source more than once repeats a feature: the demo
-        // design at 360 dpi covers its 1843 px source twice over, an 8192 px slab covers a tenth
-        // of it, and calm strips and cores there only shifted the wall's colour (mean ΔE 3.2 to
-        // 6.4 from the exemplar's) and raised its texture energy (0.82 to 1.05).
-        const double reuse =
-            double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
-        conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) *
-                       (kConspicuousCost * std::min(1.0, reuse) * variance);
+        conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
         if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
     }
     choose_corner_blocks();

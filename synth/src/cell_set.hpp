@@ -80,7 +80,8 @@ class CellSet {
     cv::Size block_;  // the blocks cells are quilted with
     double usage_weight_ = 0;
     // How far each source pixel stands out from the source's mean colour, as a match cost.
-    cv::Mat conspicuous_;  // large cells only (kLargeCell)
+    cv::Mat conspicuous_;  // large cells only
+    // Cells over kLargeCell that copy their source more than once: conspicuous cost, wide search.
     bool large_ = false;
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
