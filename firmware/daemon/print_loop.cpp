@@ -33,6 +33,7 @@ LoopRig configured_rig(const DaemonConfig& config) {
     rig.make_line = [drivers = config.drivers] { return drivers::make_line_control(drivers); };
     rig.gpio = drivers::make_gpio(config.drivers);
     rig.heads = drivers::make_head_sink(config.drivers);
+    rig.store = std::make_unique<jobs::JobStore>(config.storage.database);
     return rig;
 }
 
@@ -47,14 +48,14 @@ PrintLoop::PrintLoop(const DaemonConfig& config, Controller& controller, LoopRig
       make_line_(std::move(rig.make_line)),
       gpio_(std::move(rig.gpio)),
       heads_(std::move(rig.heads)),
-      store_(config.storage.database),
+      store_(std::move(rig.store)),
       render_(config.render.threads, config.render.queue_tiles,
               rig.render_in_turn ? RenderAhead::Mode::in_caller : RenderAhead::Mode::threads),
       governor_(config.print),
       counter_(config.drivers.line) {
     if (rig.render_in_turn && rig.render_time > Clock::duration::zero())
         render_.pace(clock_, rig.render_time);
-    seq_ = store_.last_seq();
+    seq_ = store_->last_seq();
     // Whatever the heads hold from before (a crash, a power cut) is found out by a resync
     // before the first send.
     mirror_.doubt();
@@ -282,18 +283,18 @@ void PrintLoop::on_arrivals(const CounterWatch::Verdict& verdict, bool print_ena
             ++line_printed_;
             if (!e->is_tile()) {
                 ++blanks_;
-                if (e->known) store_.mark_printed(e->job, e->index, line_tile);
+                if (e->known) store_->mark_printed(e->job, e->index, line_tile);
             } else {
-                store_.mark_printed(e->job, e->index, line_tile);
+                store_->mark_printed(e->job, e->index, line_tile);
                 last_printed_ = Printed{*e, lower_bound + i * pitch_time()};
             }
         } else {
             ++line_missed_;
-            if (job_) store_.add_missed_line_tiles(job_->id, 1);
+            if (job_) store_->add_missed_line_tiles(job_->id, 1);
             // A tile passed with nothing to print while the job still has tiles: rendering
             // did not keep up.
             if (print_enable && job_ && !draining_ && !stop_job_ &&
-                !store_.upcoming(*job_, 1).empty()) {
+                !store_->upcoming(*job_, 1).empty()) {
                 adjust_speed("render behind: line tile " + std::to_string(line_tile) +
                              " passed with no separations ready");
             }
@@ -335,7 +336,7 @@ void PrintLoop::on_estop(std::chrono::nanoseconds at) {
         // Printing the tile under the heads may have stopped half way: spoiled.
         if (estop_at - last_printed_->arrived_after < under_heads()) {
             const HeadEntry& e = last_printed_->entry;
-            store_.mark_spoiled(e.job, e.index);
+            store_->mark_spoiled(e.job, e.index);
             ++spoiled_;
             log_line("e-stop: tile " + std::to_string(e.index) + " of job-" +
                      std::to_string(e.job) +
@@ -368,18 +369,18 @@ void PrintLoop::select_job() {
     }
     if (clock_.now() < next_job_check_) return;
     next_job_check_ = clock_.now() + 100ms;
-    auto job = store_.active_job();
+    auto job = store_->active_job();
     if (!job) return;
     try {
         renderer_ = std::make_shared<TileRenderer>(*job, config_.colour, config_.storage.previews,
                                                    config_.storage.preview_tiles);
     } catch (const std::exception& e) {
-        store_.set_status(job->id, jobs::JobStatus::failed, e.what());
+        store_->set_status(job->id, jobs::JobStatus::failed, e.what());
         log_line(job->name() + " failed: " + e.what());
         return;
     }
-    store_.set_status(job->id, jobs::JobStatus::printing);
-    job_ = store_.job(job->id);
+    store_->set_status(job->id, jobs::JobStatus::printing);
+    job_ = store_->job(job->id);
     stop_job_ = false;
     log_line("job " + job_->name() + ": " + std::to_string(job_->spec.tiles) + " tiles of " +
              std::to_string(renderer_->geometry().width) + "x" +
@@ -404,7 +405,7 @@ void PrintLoop::park(const std::string& reason, LineStatus status) {
 }
 
 void PrintLoop::print_turn() {
-    if (job_) render_.want(renderer_, store_.upcoming(*job_, render_.capacity()));
+    if (job_) render_.want(renderer_, store_->upcoming(*job_, render_.capacity()));
     if (auto error = render_.take_error(); error && job_) {
         end_job(jobs::JobStatus::failed, "render: " + *error,
                 job_->name() + " failed: render: " + *error);
@@ -550,7 +551,7 @@ std::optional<Separations> PrintLoop::tile_for(std::int64_t index, bool wait) {
 }
 
 bool PrintLoop::send_next(bool deadline_applies) {
-    const auto next = store_.upcoming(*job_, 1);
+    const auto next = store_->upcoming(*job_, 1);
     if (next.empty()) return false;
     auto tile = tile_for(next.front(), false);
     if (!tile) return false;
@@ -563,20 +564,20 @@ bool PrintLoop::send_next(bool deadline_applies) {
 PrintLoop::SendResult PrintLoop::send(const HeadEntry& entry, const Separations& tile,
                                       bool deadline_applies) {
     const std::int64_t seq = ++seq_;
-    store_.mark_sending(entry.job, entry.index, seq);
+    store_->mark_sending(entry.job, entry.index, seq);
     try {
         const auto [name, index] = heads_name(entry);
         heads_->send({name, index, tile.bytes}, print_.send_timeout);
     } catch (const drivers::HeadsBusy&) {
-        store_.unmark_sending(entry.job, entry.index);
+        store_->unmark_sending(entry.job, entry.index);
         return SendResult::busy;
     } catch (const std::exception& e) {
         // The heads did not take it (connection refused, timeout): sent again later.
-        store_.unmark_sending(entry.job, entry.index);
+        store_->unmark_sending(entry.job, entry.index);
         log_line("heads: " + std::string(e.what()));
         return SendResult::failed;
     }
-    store_.mark_sent(entry.job, entry.index);
+    store_->mark_sent(entry.job, entry.index);
     mirror_.sent(entry);
     if (deadline_applies && clock_.now() > deadline(mirror_.size() - 1)) {
         log_line("tile " + std::to_string(entry.index) + " reached the heads " +
@@ -627,7 +628,7 @@ void PrintLoop::on_heads_short(std::size_t count) {
     for (const HeadEntry& e : mirror_.lose_oldest(count)) {
         if (!e.is_tile()) continue;
         std::optional<bool> in_journal;
-        if (store_.times_spoiled(e.job, e.index) == 0) {
+        if (store_->times_spoiled(e.job, e.index) == 0) {
             try {
                 const auto [name, index] = heads_name(e);
                 in_journal = heads_->printed(name, index, print_.send_timeout);
@@ -636,12 +637,12 @@ void PrintLoop::on_heads_short(std::size_t count) {
             }
         }
         if (in_journal.value_or(false)) {
-            store_.mark_printed(e.job, e.index, -1);
+            store_->mark_printed(e.job, e.index, -1);
             ++line_printed_;
             ++uncounted;
             printed += (printed.empty() ? "" : ", ") + std::to_string(e.index);
         } else {
-            store_.mark_missed(e.job, e.index);
+            store_->mark_missed(e.job, e.index);
             lost += (lost.empty() ? "" : ", ") + std::to_string(e.index);
         }
     }
@@ -657,7 +658,7 @@ void PrintLoop::on_heads_short(std::size_t count) {
 }
 
 bool PrintLoop::resync() {
-    const std::vector<jobs::QueuedTile> old = store_.heads_queue();
+    const std::vector<jobs::QueuedTile> old = store_->heads_queue();
     if (old.empty()) {
         mirror_.known_empty();
         return true;
@@ -668,7 +669,7 @@ bool PrintLoop::resync() {
     const std::size_t tile_bytes =
         std::size_t(renderer_->geometry().width) * std::size_t(renderer_->geometry().height) * 4;
     while (int(probes.size()) < capacity) {
-        const auto next = stop_job_ ? std::vector<std::int64_t>{} : store_.upcoming(*job_, 1);
+        const auto next = stop_job_ ? std::vector<std::int64_t>{} : store_->upcoming(*job_, 1);
         std::optional<Separations> tile;
         HeadEntry entry{job_->id, 0, true};
         if (!next.empty()) {
@@ -687,7 +688,7 @@ bool PrintLoop::resync() {
         if (result == SendResult::failed) {
             // Put back what the probe sent; the next turn starts over.
             for (const HeadEntry& p : probes)
-                if (p.index >= 0) store_.unmark_sending(p.job, p.index);
+                if (p.index >= 0) store_->unmark_sending(p.job, p.index);
             mirror_.forget();
             return false;
         }
@@ -699,15 +700,15 @@ bool PrintLoop::resync() {
     if (plan.last_sending_reached) {
         const jobs::QueuedTile& last = old.back();
         if (*plan.last_sending_reached)
-            store_.mark_sent(last.job, last.index);
+            store_->mark_sent(last.job, last.index);
         else
-            store_.unmark_sending(last.job, last.index);
+            store_->unmark_sending(last.job, last.index);
     }
     if (plan.unknown > 0)
         log_line("resync: the heads hold " + std::to_string(plan.unknown) +
                  " tile(s) the job store never sent; they will pass as blanks");
     for (const HeadEntry& e : plan.printed)
-        store_.mark_printed(e.job, e.index, -1);
+        store_->mark_printed(e.job, e.index, -1);
     mirror_.adopt(plan, probes);
     const int printed = int(plan.printed.size());
     log_line("resync: heads hold " + std::to_string(held) + " earlier tile(s); " +
@@ -718,7 +719,7 @@ bool PrintLoop::resync() {
 
 void PrintLoop::check_job_done() {
     if (!job_) return;
-    const auto job = store_.job(job_->id);
+    const auto job = store_->job(job_->id);
     if (!job) return;
     const bool holds = mirror_.holds_tiles_of(job_->id);
     const bool cancelled = job->status == jobs::JobStatus::cancelled;
@@ -746,7 +747,7 @@ void PrintLoop::stop_job_while_held() {
     // that. The job's tiles still in the heads stay `sent`: the resync before the next start
     // finds out which of them print.
     if (!job_) return;
-    const auto job = store_.job(job_->id);
+    const auto job = store_->job(job_->id);
     if (!stop_job_ && !(job && job->status == jobs::JobStatus::cancelled)) return;
     end_job(jobs::JobStatus::cancelled, "stopped by the operator while the line was held",
             job_->name() + " stopped while the line was held (" + state_.reason() +
@@ -758,7 +759,7 @@ void PrintLoop::end_job(jobs::JobStatus status, const std::string& message,
                         const std::string& log) {
     // The one place a job ends, whatever ends it: the store says so, and nothing of it is
     // rendered any more (a failed render used to be retried for a job already given up).
-    store_.set_status(job_->id, status, message);
+    store_->set_status(job_->id, status, message);
     log_line(log);
     job_.reset();
     renderer_.reset();

@@ -35,14 +35,16 @@
 
 namespace tilejet::daemon {
 
-// What a print loop runs on. The daemon's: the configured drivers, the steady clock and render
-// threads (configured_rig). A test's: a VirtualLine's drivers and stepped clock, and tiles
-// rendered in the turn that takes them, so that every run goes the same way.
+// What a print loop runs on. The daemon's: the configured drivers, the job store at [storage]
+// database, the steady clock and render threads (configured_rig). A test's: a VirtualLine's drivers
+// and stepped clock, and tiles rendered in the turn that takes them, so that every run goes the
+// same way.
 struct LoopRig {
     // Called on the loop's own thread (libmodbus contexts belong to one thread).
     std::function<std::unique_ptr<drivers::LineControl>()> make_line;
     std::unique_ptr<drivers::Gpio> gpio;
     std::unique_ptr<drivers::HeadSink> heads;
+    std::unique_ptr<jobs::JobStore> store;
     LoopClock* clock = &LoopClock::steady();
     bool render_in_turn = false;
     // With render_in_turn: each tile takes this long of the clock's time to render (0: none).
@@ -119,7 +121,7 @@ class PrintLoop {
     std::unique_ptr<drivers::LineControl> line_;
     std::unique_ptr<drivers::Gpio> gpio_;
     std::unique_ptr<drivers::HeadSink> heads_;
-    jobs::JobStore store_;
+    std::unique_ptr<jobs::JobStore> store_;
     RenderAhead render_;
     SpeedGovernor governor_;
     LineStateMachine state_;

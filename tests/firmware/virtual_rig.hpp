@@ -76,6 +76,7 @@ class VirtualRig {
         rig.make_line = [this] { return line_.make_line_control(); };
         rig.gpio = line_.make_gpio();
         rig.heads = line_.make_heads();
+        rig.store = std::make_unique<jobs::JobStore>(config_.storage.database);
         rig.clock = &clock_;
         rig.render_in_turn = true;
         rig.render_time = render_time_;
