@@ -5,9 +5,11 @@
 // is a real one in a temp folder (a crash is the loop destroyed without finish(), its store on
 // disk). Every run goes the same way, thousands of tiles in a second or two.
 #include <catch2/catch.hpp>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "../../firmware/daemon/print_loop.hpp"
@@ -27,18 +29,33 @@ class VirtualClock : public daemon::LoopClock {
     drivers::VirtualLine& line_;
 };
 
-// The default config (its register map is not used: there is no wire), with a small line and a
-// job store in `dir`.
+// The default config with its paths made absolute and the test's CMYK profile (the shipped
+// one names the profile scripts/demo builds, absent in a clean clone), a small line and a job
+// store in `dir`. Its register map is not used: there is no wire.
 inline daemon::DaemonConfig virtual_config(const std::filesystem::path& dir) {
-    daemon::DaemonConfig c = daemon::load_daemon_config(
-        (std::filesystem::path(TILEJET_SOURCE_DIR) / "config/tilejet.toml").string());
+    const std::filesystem::path config_dir = std::filesystem::path(TILEJET_SOURCE_DIR) / "config";
+    std::ifstream in(config_dir / "tilejet.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string toml = text.str();
+    const auto replace_line = [&](const std::string& key, const std::string& value) {
+        const size_t at = toml.find("\n" + key + " = ");
+        REQUIRE(at != std::string::npos);
+        const size_t end = toml.find('\n', at + 1);
+        toml.replace(at + 1, end - at - 1, key + " = \"" + value + "\"");
+    };
+    replace_line("register_map", (config_dir / "registers.toml").string());
+    replace_line("output_profile", TILEJET_TEST_CMYK_PROFILE);
+    replace_line("database", (dir / "jobs.db").string());
+    replace_line("previews", (dir / "previews").string());
+    replace_line("designs", dir.string());
+    replace_line("profiles", dir.string());
+    std::ofstream(dir / "tilejetd.toml") << toml;
+    daemon::DaemonConfig c = daemon::load_daemon_config((dir / "tilejetd.toml").string());
     c.drivers.line.tile_length_mm = 200;
     c.drivers.line.tile_pitch_mm = 250;
     c.drivers.line.photo_eye_mm = 100;
     c.drivers.line.heads_mm = 700;
-    c.colour.output_profile = TILEJET_TEST_CMYK_PROFILE;
-    c.storage.database = (dir / "jobs.db").string();
-    c.storage.previews = (dir / "previews").string();
     c.storage.preview_tiles = 0;
     c.render.threads = 1;
     c.render.queue_tiles = 4;
