@@ -1,8 +1,6 @@
 #include "tilejet/synth/build.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <optional>

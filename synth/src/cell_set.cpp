@@ -40,6 +40,11 @@ constexpr double kUsageCost = 0.5;
 // came from its few calm places, and the cell grid showed (granite's periodicity 1.95 against
 // 1.02; gravel's texture energy 1.31 against 1.18). Lattices (grout lines) are left out.
 constexpr double kConspicuousZ2 = 2.0;
+// Copying a conspicuous pixel costs this many times its squared excess (in units of the source's
+// variance) for every copy other images and strips made before, so the set shows it about once. A
+// strip pays it for the first copy too: each strip shows at a quarter of all cell edges (K = 2),
+// and the vein copied into one drew a white tick at every fourth edge.
+constexpr double kConspicuousCost = 1.0;
 // Cells larger than this (those of exemplars of 1024 px and more) get the cost of conspicuous
 // pixels and the wider block search, when the set must copy its source more than once. Where it
 // need not (an 8192 px slab: its set covers a tenth of it) features do not recur, and the wide
@@ -49,11 +54,6 @@ constexpr double kConspicuousZ2 = 2.0;
 // to 1.5: strips from its few calm places, alike at every fourth edge), and those designs showed no
 // repeated feature.
 constexpr int kLargeCell = 320;
-// ...and copying it costs this many times its squared excess (in units of the source's
-// variance) for every time it was copied before, so the set shows it about once. A strip pays
-// it for the first copy too: each strip shows at a quarter of all cell edges (K = 2), and the
-// vein copied into one drew a white tick at every fourth edge.
-constexpr double kConspicuousCost = 1.0;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
 struct Canvas {
@@ -156,7 +156,8 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
 
     cv::Scalar mean, deviation;
     cv::meanStdDev(source_lab, mean, deviation);
-    usage_weight_ = kUsageCost * deviation.dot(deviation);
+    const double variance = deviation.dot(deviation);
+    usage_weight_ = kUsageCost * variance;
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
     // its 1843 px source twice, an 8192 px slab a tenth of its source.
     const double reuse =
@@ -165,7 +166,6 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     if (large_) {
         // Squared CIELab distance from the mean, less what is still typical, in units of the
         // source's variance, times that variance: a match cost per pixel.
-        const double variance = deviation.dot(deviation);
         cv::Mat difference = source_lab - mean;
         std::vector<cv::Mat> channels;
         cv::split(difference.mul(difference), channels);

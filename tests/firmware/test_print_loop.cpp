@@ -28,8 +28,7 @@ void check_parked(test::VirtualRig& rig) {
 TEST_CASE("on the virtual line a job prints every tile exactly once", "[loop]") {
     test::VirtualRig rig;
     const auto id = rig.add_job(40);
-    REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-    rig.check_exactly_once(id, 40);
+    rig.finish_exactly_once(id, 40);
     CHECK(rig.job(id).printed == 40);
     // Nothing else reached the heads printed: no tile of another job, no blank.
     for (const auto& a : rig.line().arrivals())
@@ -53,12 +52,11 @@ TEST_CASE("an e-stop spoils the tile under the heads, which is printed again", "
     CHECK(rig.job(id).spoiled == 1);
 
     rig.line().set_estop(false);
-    rig.step_until([] { return false; }, 200ms);
+    rig.run_for(200ms);
     CHECK(rig.snapshot().status == LineStatus::estop);  // latched until acknowledged
     CHECK_FALSE(rig.line().conveyor_running());
     rig.controller().post(daemon::Command::acknowledge);
-    REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-    rig.check_exactly_once(id, 30);
+    rig.finish_exactly_once(id, 30);
 }
 
 TEST_CASE("a daemon killed mid-job resumes on the same line and prints each tile once", "[loop]") {
@@ -72,8 +70,7 @@ TEST_CASE("a daemon killed mid-job resumes on the same line and prints each tile
         rig.line().advance(700ms);  // the conveyor runs on; print-enable is low
         rig.boot();
     }
-    REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-    rig.check_exactly_once(id, 40);
+    rig.finish_exactly_once(id, 40);
 }
 
 TEST_CASE("SIGTERM finishes the tiles in the heads, parks the line, and the job resumes",
@@ -92,8 +89,7 @@ TEST_CASE("SIGTERM finishes the tiles in the heads, parks the line, and the job 
     CHECK(rig.line().heads_buffered() == 0);  // drained: every tile sent was printed
 
     rig.boot();
-    REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-    rig.check_exactly_once(id, 40);
+    rig.finish_exactly_once(id, 40);
 }
 
 TEST_CASE("tiles the heads lose in a restart are printed again, none twice", "[loop]") {
@@ -105,8 +101,7 @@ TEST_CASE("tiles the heads lose in a restart are printed again, none twice", "[l
     REQUIRE(rig.line().heads_buffered() > 0);
     rig.line().restart_heads();
     rig.controller().post(daemon::Command::resume);
-    REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-    rig.check_exactly_once(id, 30);
+    rig.finish_exactly_once(id, 30);
     CHECK(rig.job(id).missed >= 1);
 }
 
@@ -150,7 +145,7 @@ TEST_CASE("a PLC that restarts, lies or drops the link stops the line in a named
             CHECK_FALSE(rig.line().print_enable());
             // Held: a second of line time later nothing moves and nothing prints.
             const std::size_t arrivals = rig.line().arrivals().size();
-            rig.step_until([] { return false; }, 1s);
+            rig.run_for(1s);
             CHECK(rig.snapshot().status == LineStatus::faulted);
             if (std::string(f.says) != "link") {
                 check_parked(rig);
@@ -162,8 +157,7 @@ TEST_CASE("a PLC that restarts, lies or drops the link stops the line in a named
             // Cleared and acknowledged, the job finishes, each tile once.
             f.clear(rig.line());
             rig.controller().post(daemon::Command::acknowledge);
-            REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-            rig.check_exactly_once(id, 40);
+            rig.finish_exactly_once(id, 40);
         }
     }
 }
@@ -195,10 +189,9 @@ TEST_CASE("on the virtual line tiles printed while the counter stuck are not pri
             rig.line().stick_counter(false);
             // A pause and a resume: the heads hold fewer tiles than the loop's mirror.
             rig.controller().post(daemon::Command::pause);
-            rig.step_until([] { return false; }, 500ms);
+            rig.run_for(500ms);
             rig.controller().post(daemon::Command::resume);
-            REQUIRE(rig.step_until([&] { return rig.job_done(id); }));
-            rig.check_exactly_once(id, 30);
+            rig.finish_exactly_once(id, 30);
         }
     }
 }

@@ -137,6 +137,10 @@ class VirtualRig {
         }
         return false;
     }
+    // Steps for `d` of line time, whatever happens.
+    void run_for(std::chrono::steady_clock::duration d) {
+        step_until([] { return false; }, d);
+    }
     bool job_done(std::int64_t id) { return job(id).status == jobs::JobStatus::done; }
     daemon::LineSnapshot snapshot() const { return controller_->snapshot(); }
 
@@ -162,6 +166,13 @@ class VirtualRig {
             CHECK(printed == 1 + spoiled);
         }
         CHECK(int(n.size()) == tiles);
+    }
+
+    // Steps until job `id` is done (at most two minutes of line time), then checks each of its
+    // `tiles` was printed once.
+    void finish_exactly_once(std::int64_t id, std::int64_t tiles) {
+        REQUIRE(step_until([&] { return job_done(id); }));
+        check_exactly_once(id, tiles);
     }
 
     // No tile is marked printed that the heads did not print.
