@@ -95,11 +95,11 @@ void run_build(const BuildOptions& o) {
     const PatchCounts counts = count_patches(map);
     std::printf(
         "wrote %s: map %s, %g dpi (exemplar %g dpi, %dx%d px), cell %dx%d, %zu cell images (%d "
-        "corner colours), %zu A + %zu B patches, %ju bytes, %.1f s\n",
+        "corner colours, %d variant%s), %zu A + %zu B patches, %ju bytes, %.1f s\n",
         o.output.c_str(), map.id_hex().substr(0, 16).c_str(), map.build.dpi, map.build.exemplar_dpi,
         map.build.exemplar_width, map.build.exemplar_height, map.cell_width, map.cell_height,
-        map.cell_images.size(), map.corner_colours, counts.a, counts.b,
-        uintmax_t(std::filesystem::file_size(o.output)), seconds);
+        map.cell_images.size(), map.corner_colours, map.variants, map.variants == 1 ? "" : "s",
+        counts.a, counts.b, uintmax_t(std::filesystem::file_size(o.output)), seconds);
 }
 
 void run_info(const std::string& path) {
@@ -112,6 +112,7 @@ void run_info(const std::string& path) {
     j["cell_height"] = map.cell_height;
     j["cell_images"] = map.cell_images.size();
     j["corner_colours"] = map.corner_colours;
+    j["variants"] = map.variants;
     j["patches_a"] = counts.a;  // over all cell images
     j["patches_b"] = counts.b;
     j["source_width"] = map.source.cols;
@@ -167,10 +168,15 @@ void add_map_commands(CLI::App& app) {
     b->add_option("--cell", build->params.cell_size,
                   "cell size in px (default: four of the exemplar's largest structures, 256 to 320 "
                   "px (to 640 px from 1024 px exemplars on), at most the exemplar's side)");
-    b->add_option("--corner-colours", build->params.corner_colours,
-                  "corner colours K: K^4 cell images that meet seamlessly whatever the hash "
-                  "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
-                  "(default 2)");
+    b->add_option(
+        "--corner-colours", build->params.corner_colours,
+        "corner colours K: K^4 cell images per variant that meet seamlessly whatever the hash "
+        "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
+        "(default 2)");
+    b->add_option("--variants", build->params.variants,
+                  "cell images per combination of corner colours, 1 or 2: with 2 the cells "
+                  "across an edge never show the same image (default 2; 1 on a lattice and for "
+                  "one cell image)");
     b->add_option("--patches", build->params.patches,
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,

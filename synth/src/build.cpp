@@ -33,6 +33,7 @@ using namespace detail;
 constexpr int kCandidatesPerPatch = 40;
 constexpr int kDefaultPatches = 600;
 constexpr int kDefaultPatchesPerSetImage = 32;
+constexpr int kDefaultSetVariants = 2;
 constexpr int kCandidatesPerSetPatch = 8;
 constexpr int kOffsetDrawsInSet = 24;
 constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
@@ -50,6 +51,11 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
     if (p.corner_colours < 1 || p.corner_colours > 4)
         throw SynthError("--corner-colours " + std::to_string(p.corner_colours) +
                          " must be between 1 and 4");
+    if (p.variants < 0 || p.variants > 2)
+        throw SynthError("--variants " + std::to_string(p.variants) + " must be 1 or 2");
+    if (p.corner_colours == 1 && p.variants > 1)
+        throw SynthError("--variants " + std::to_string(p.variants) +
+                         " needs a cell set (--corner-colours 2 or more)");
     if (p.candidates != 0 && p.candidates < p.patches)
         throw SynthError("--candidates " + std::to_string(p.candidates) +
                          " must be at least --patches (" + std::to_string(p.patches) + ")");
@@ -321,6 +327,10 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     const int source_side = std::min(map.source.cols, map.source.rows);
     const CellGrid grid(cell_size.width, cell_size.height);
 
+    // A lattice's second variant would share the source with the first (cell_set.hpp).
+    const int variants = params.variants != 0                         ? params.variants
+                         : corner_colours == 1 || lattice.has_value() ? 1
+                                                                      : kDefaultSetVariants;
     if (corner_colours == 1) {
         if (progress) progress("cell image", 0, 1);
         CellImage image;
@@ -341,10 +351,10 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         map.cell_images.push_back(std::move(image));
     } else {
         if (progress) progress("cell set", 0, 1);
-        const CellSet set(
-            map.source, source_lab,
-            {cell_size, corner_colours, params.seed, threads, lattice ? &*lattice : nullptr});
-        map.corner_colours = corner_colours;
+        const CellSet set(map.source, source_lab,
+                          {cell_size, corner_colours, variants, params.seed, threads,
+                           lattice ? &*lattice : nullptr});
+        map.corner_colours = corner_colours, map.variants = variants;
         // Patches as large as a third of the cell where their seams are good: the size classes
         // of best_candidates keep the large ones that fit.
         const int max_radius = std::max(2, std::min(cell / 3, (source_side / 2 - 2) * 2 / 3));

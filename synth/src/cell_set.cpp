@@ -160,8 +160,16 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     usage_weight_ = kUsageCost * variance;
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
     // its 1843 px source twice, an 8192 px slab a tenth of its source.
-    const double reuse =
-        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
+    const int variants = std::max(1, params.variants);
+    // A second variant quilts its insides from the source turned half a turn: its own budget of
+    // source, with the same statistics (a half turn keeps every orientation and the
+    // autocorrelation). Drawn from the same source as the first, the demo design's 32 images at
+    // 360 dpi used up its calm places and copied its white vein in straight-sided shards all
+    // over the plane. A lattice's phase does not survive the turn; there both variants share the
+    // source and its budget.
+    turned_ = variants > 1 && !params.lattice;
+    const double reuse = double(k_) * k_ * k_ * k_ * (turned_ ? 1 : variants) * cw_ * ch_ /
+                         (double(source_lab.cols) * source_lab.rows);
     large_ = side > kLargeCell && reuse >= 1;
     if (large_) {
         // Squared CIELab distance from the mean, less what is still typical, in units of the
@@ -173,6 +181,11 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         cv::GaussianBlur(z2, z2, {0, 0}, std::max(1.0, side / 16.0));
         conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
         if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
+    }
+    if (turned_) {
+        cv::rotate(source_rgb, turned_rgb_, cv::ROTATE_180);
+        cv::rotate(source_lab, turned_lab_, cv::ROTATE_180);
+        if (!conspicuous_.empty()) cv::rotate(conspicuous_, turned_conspicuous_, cv::ROTATE_180);
     }
     choose_corner_blocks();
     const size_t kinds = size_t(k_) * size_t(k_);
@@ -187,18 +200,27 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         count_uses(usage, blocks);
     }
     // Images are made in batches of a fixed size, whatever the threads, so that each avoids the
-    // blocks of the batches before it and the set stays the same bytes on every machine.
-    images_.resize(kinds * kinds);
-    std::vector<Placement> placed;
-    for (size_t begin = 0; begin < images_.size(); begin += kImageBatch) {
-        const size_t end = std::min(images_.size(), begin + kImageBatch);
-        std::vector<std::vector<Placement>> batch(end - begin);
-        parallel_for(end - begin, params.threads, [&](size_t i) {
-            images_[begin + i] = make_image(begin + i, placed, usage, batch[i]);
-        });
-        for (const auto& b : batch) {
-            placed.insert(placed.end(), b.begin(), b.end());
-            count_uses(usage, b);
+    // blocks of the batches before it and the set stays the same bytes on every machine. A
+    // turned variant keeps its own account of what it copied, in the turned source's pixels.
+    const size_t combinations = kinds * kinds;
+    images_.resize(combinations * size_t(variants));
+    std::vector<Placement> placed, placed_turned;
+    cv::Mat usage_turned(source_lab.size(), CV_32F, cv::Scalar(0));
+    for (size_t variant = 0; variant < size_t(variants); ++variant) {
+        const bool turned = turned_ && variant > 0;
+        std::vector<Placement>& avoid = turned ? placed_turned : placed;
+        cv::Mat& used = turned ? usage_turned : usage;
+        for (size_t begin = 0; begin < combinations; begin += kImageBatch) {
+            const size_t end = std::min(combinations, begin + kImageBatch);
+            const size_t first = variant * combinations + begin;
+            std::vector<std::vector<Placement>> batch(end - begin);
+            parallel_for(end - begin, params.threads, [&](size_t i) {
+                images_[first + i] = make_image(first + i, avoid, used, batch[i]);
+            });
+            for (const auto& b : batch) {
+                avoid.insert(avoid.end(), b.begin(), b.end());
+                count_uses(used, b);
+            }
         }
     }
 }
@@ -412,7 +434,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
                             std::vector<Placement>& placed) const {
     const size_t k = size_t(k_);
     const uint32_t tl = uint32_t(index % k), tr = uint32_t(index / k % k),
-                   bl = uint32_t(index / k / k % k), br = uint32_t(index / k / k / k);
+                   bl = uint32_t(index / k / k % k), br = uint32_t(index / k / k / k % k);
     Canvas canvas({cw_, ch_});
     // The frame: the cell's halves of its four strips. In each corner the horizontal and the
     // vertical strip overlap; the corner is cut between them, the horizontal one along the
@@ -457,24 +479,28 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge.
     canvas.locked.setTo(255);
     canvas.locked(cv::Rect(1, 1, cw_ - 2, ch_ - 2)).setTo(0);
+    const bool turned = turned_ && index >= k * k * k * k;
     canvas.avoid = &avoid;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {
-        canvas.conspicuous = &conspicuous_;
+        canvas.conspicuous = turned ? &turned_conspicuous_ : &conspicuous_;
         canvas.wide_search = true;
     }
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
-    quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
+    quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_,
+               turned ? turned_rgb_ : source_rgb_, turned ? turned_lab_ : source_lab_,
                params_.lattice, {0, 0}, rng);
     placed = std::move(canvas.placed);
     return canvas.rgb;
 }
 
 cv::Mat CellSet::neighbourhood(size_t index) const {
-    const size_t k = size_t(k_);
+    const size_t k = size_t(k_), combinations = k * k * k * k;
     const uint32_t corner[2][2] = {{uint32_t(index % k), uint32_t(index / k % k)},
-                                   {uint32_t(index / k / k % k), uint32_t(index / k / k / k)}};
+                                   {uint32_t(index / k / k % k), uint32_t(index / k / k / k % k)}};
+    // Across an edge the other variant, across a vertex the same (corner_colours.hpp).
+    const size_t variant = index / combinations, variants = images_.size() / combinations;
     // Vertices beyond the cell's own four take the colour of the nearest of them.
     const auto colour = [&](int vi, int vj) {
         return corner[std::clamp(vj, 0, 1)][std::clamp(vi, 0, 1)];
@@ -482,8 +508,10 @@ cv::Mat CellSet::neighbourhood(size_t index) const {
     cv::Mat out(3 * ch_, 3 * cw_, CV_8UC3);
     for (int j = -1; j <= 1; ++j)
         for (int i = -1; i <= 1; ++i) {
-            const size_t m = colour(i, j) + k * (colour(i + 1, j) +
-                                                 k * (colour(i, j + 1) + k * colour(i + 1, j + 1)));
+            const size_t m =
+                colour(i, j) +
+                k * (colour(i + 1, j) + k * (colour(i, j + 1) + k * colour(i + 1, j + 1))) +
+                combinations * ((variant + size_t(i + j + 2)) % variants);
             images_[m].copyTo(out(cv::Rect((i + 1) * cw_, (j + 1) * ch_, cw_, ch_)));
         }
     return out;

@@ -45,8 +45,9 @@ constexpr std::array<std::string_view, 10> kKnownTags = {"META", "CSET", "PHYS",
 constexpr double kMinDpi = 1, kMaxDpi = 100000;
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
+constexpr int kMaxVariants = 2;  // the (i + j) mod 2 rule of corner_colours.hpp
 constexpr uint32_t kMaxCellImages =
-    kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxCornerColours;
+    kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxVariants;
 
 // Fuzzing builds skip the checksums and the id check, so that mutated files reach the parser and
 // the checks behind it (patch bounds, diamonds) instead of stopping at the first CRC.
@@ -250,6 +251,8 @@ std::vector<Section> content_sections(const TextureMap& map) {
     if (map.corner_colours > 1) {
         Writer w;
         w.le<uint32_t>(uint32_t(map.corner_colours));
+        // Only sets of variants carry it, so that sets of one image per combination keep their id.
+        if (map.variants > 1) w.le<uint32_t>(uint32_t(map.variants));
         out.push_back({"CSET", 0, std::move(w.bytes)});
     }
     // Likewise only maps that know their size: the id of a map built without stays what it was.
@@ -512,14 +515,19 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     if (where_is.count({"CSET", 0}) || images != 1) {
         Reader r = section("CSET", 0);
         const auto k = r.le<uint32_t>("corner colours");
+        const auto v = r.remaining() > 0 ? r.le<uint32_t>("variants") : 1u;
         r.done();
         if (k < 2 || k > uint32_t(kMaxCornerColours))
             r.fail("corner colours " + std::to_string(k) + " is out of range (2 to " +
                    std::to_string(kMaxCornerColours) + ")");
-        if (uint64_t(k) * k * k * k != images)
-            r.fail(std::to_string(k) + " corner colours need " + std::to_string(k * k * k * k) +
+        if (v < 1 || v > uint32_t(kMaxVariants))
+            r.fail("variants " + std::to_string(v) + " is out of range (1 to " +
+                   std::to_string(kMaxVariants) + ")");
+        if (uint64_t(k) * k * k * k * v != images)
+            r.fail(std::to_string(k) + " corner colours and " + std::to_string(v) +
+                   " variants need " + std::to_string(k * k * k * k * v) +
                    " cell images, the map holds " + std::to_string(images));
-        map.corner_colours = int(k);
+        map.corner_colours = int(k), map.variants = int(v);
     }
     {
         Reader r = section("SRCE", 0);

@@ -25,7 +25,8 @@ namespace {
 
 constexpr int kCell = 48;
 
-// A small set of the demo design: K = 2, so 16 cell images, 48 px cells.
+// A small set of the demo design: K = 2 and two variants (the defaults), so 32 cell images,
+// 48 px cells.
 const TextureMap& small_set() {
     static const TextureMap map = [] {
         BuildParams p;
@@ -54,13 +55,14 @@ double column_jump(const cv::Mat& lab_a, int a, const cv::Mat& lab_b, int b) {
     return sum / lab_a.rows;
 }
 
+// What image `index` of a set is made for: its corners' colours and its variant.
 struct Corners {
-    int tl, tr, bl, br;
+    int tl, tr, bl, br, variant;
 };
 
 Corners corners_of(size_t index, int k) {
     const int m = int(index);
-    return {m % k, m / k % k, m / k / k % k, m / k / k / k};
+    return {m % k, m / k % k, m / k / k % k, m / k / k / k % k, m / (k * k * k * k)};
 }
 
 std::string sha256_hex(const cv::Mat& m) {
@@ -120,7 +122,8 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     const TextureMap& map = small_set();
     const int k = map.corner_colours;
     REQUIRE(k == 2);
-    REQUIRE(map.cell_images.size() == 16);
+    REQUIRE(map.variants == 2);
+    REQUIRE(map.cell_images.size() == 32);
     std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
     for (const CellImage& image : map.cell_images) {
         lab.push_back(lab_of(image.rgb));
@@ -140,10 +143,12 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     for (size_t a = 0; a < lab.size(); ++a)
         for (size_t b = 0; b < lab.size(); ++b) {
             const Corners ca = corners_of(a, k), cb = corners_of(b, k);
-            // b right of a, and b below a.
+            // b right of a, and b below a: the shared corners agree, and a cell's neighbours
+            // across an edge show the other variant.
             for (const bool beside : {true, false}) {
                 const bool fits =
-                    beside ? ca.tr == cb.tl && ca.br == cb.bl : ca.bl == cb.tl && ca.br == cb.tr;
+                    ca.variant != cb.variant &&
+                    (beside ? ca.tr == cb.tl && ca.br == cb.bl : ca.bl == cb.tl && ca.br == cb.tr);
                 const double jump = beside ? column_jump(lab[a], kCell - 1, lab[b], 0)
                                            : column_jump(lab_t[a], kCell - 1, lab_t[b], 0);
                 if (fits) {
@@ -156,8 +161,8 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
                 }
             }
         }
-    // Every pair the hash can pick: 16 images, each with 4 possible right and 4 lower neighbours.
-    REQUIRE(compatible == 2 * 16 * 4);
+    // Every pair the hash can pick: 32 images, each with 4 possible right and 4 lower neighbours.
+    REQUIRE(compatible == 2 * 32 * 4);
     // The measure can fail: pairs the hash never picks do not meet seamlessly.
     INFO("compatible " << compatible_sum / compatible << ", others "
                        << incompatible_sum / incompatible);
@@ -217,11 +222,52 @@ TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cel
     // Critical values at p = 0.001: 124.8 for 80 degrees of freedom, 26.1 for 8.
     CHECK(chi_square(count) < 124.8);
     CHECK(chi_square(next) < 26.1);
+    // With two variants, each is uniform over its parity's cells and the corners as before.
+    map.corner_colours = 2, map.variants = 2;
+    std::vector<double> even(16, 0), odd(16, 0);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const uint32_t m = cell_image_index(map, 99, {i - 150, j + 7000});
+            REQUIRE(m < 32);
+            REQUIRE(m / 16 == uint32_t((i + j) % 2));
+            ++((i + j) % 2 ? odd : even)[m % 16];
+        }
+    // 15 degrees of freedom.
+    CHECK(chi_square(even) < 37.7);
+    CHECK(chi_square(odd) < 37.7);
+    map.corner_colours = 3, map.variants = 1;
     // Another seed picks differently.
     const bool differs = cell_image_index(map, 100, {0, 0}) != cell_image_index(map, 99, {0, 0}) ||
                          cell_image_index(map, 100, {1, 0}) != cell_image_index(map, 99, {1, 0}) ||
                          cell_image_index(map, 100, {2, 0}) != cell_image_index(map, 99, {2, 0});
     REQUIRE(differs);
+}
+
+TEST_CASE("with two variants no two cells across an edge show the same image", "[cell_set]") {
+    // With one image per combination of K = 2 corner colours, the cells either side of an edge
+    // show the same image when the three vertices along each side of the pair agree: one edge
+    // in 16, a motif doubled side by side.
+    TextureMap map;
+    map.corner_colours = 2;
+    map.id[3] = 0x41;
+    auto same_across_edges = [&map] {
+        int same = 0;
+        for (int64_t j = -100; j < 100; ++j)
+            for (int64_t i = -100; i < 100; ++i) {
+                const uint32_t m = cell_image_index(map, 5, {i, j});
+                same += m == cell_image_index(map, 5, {i + 1, j});
+                same += m == cell_image_index(map, 5, {i, j + 1});
+            }
+        return same;
+    };
+    map.variants = 1;
+    const int before = same_across_edges();
+    map.variants = 2;
+    const int now = same_across_edges();
+    INFO("edges between two copies of one image, of 80000: one variant " << before << ", two "
+                                                                         << now);
+    CHECK(before > 80000 / 16 * 8 / 10);
+    CHECK(now == 0);
 }
 
 TEST_CASE("a set renders region by region exactly as Sampler::sample", "[cell_set][sampler]") {
@@ -270,7 +316,7 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
     p.candidates = 96;
     p.seed = 3;
     const TextureMap set = build_texture_map(demo_exemplar(), p);
-    REQUIRE(set.cell_images.size() == 16);  // 2 corner colours, the default
+    REQUIRE(set.cell_images.size() == 32);  // 2 corner colours and 2 variants, the defaults
     const Region region{1000, -2000, 384, 384};
     const double old_grid = grid_contrast(render_region(old_map, 7, region), 32, 32);
     const double new_grid = grid_contrast(render_region(set, 7, region), 32, 32);
@@ -283,6 +329,22 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
     CHECK(old_grid > 0.5);
     // What is left is the thin frames that neighbours share (a quarter block wide).
     CHECK(new_grid < 0.15);
+}
+
+TEST_CASE("a set's variants survive saving, and a count that does not fit is refused on load",
+          "[cell_set][map_file]") {
+    TextureMap map = small_set();
+    REQUIRE(decode_texture_map(encode_texture_map(map), "again").variants == 2);
+    map.variants = 1;  // 16 images expected, 32 held
+    assign_map_id(map);
+    CHECK_THROWS_WITH(decode_texture_map(encode_texture_map(map), "crafted.tjmap"),
+                      Catch::Contains("crafted.tjmap") && Catch::Contains("CSET") &&
+                          Catch::Contains("need 16 cell images, the map holds 32"));
+    map.variants = 3;
+    assign_map_id(map);
+    CHECK_THROWS_WITH(
+        decode_texture_map(encode_texture_map(map), "crafted.tjmap"),
+        Catch::Contains("crafted.tjmap") && Catch::Contains("variants 3 is out of range"));
 }
 
 TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
@@ -319,6 +381,7 @@ TEST_CASE("a source's one conspicuous feature shows in few cell images and in no
     cv::circle(noise, {side / 2, side / 2}, 52, cv::Scalar::all(250), cv::FILLED, cv::LINE_AA);
     BuildParams p;
     p.corner_colours = 2;
+    p.variants = 1;  // the disc's budget is the set's 16 images, as when this test was written
     p.cell_size = cell;
     p.patches = 4;
     p.candidates = 16;

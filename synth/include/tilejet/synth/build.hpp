@@ -23,6 +23,11 @@ struct BuildParams {
     // 61 s for a 384 px exemplar and 15 MB. The hash still picks among 16 images per cell, with
     // their own patches over them, and no grid showed on walls of either.
     int corner_colours = 2;
+    // V cell images per combination of corner colours, K^4 V in all; with 2 the cells across an
+    // edge show different variants, never one image twice side by side (with 1, one edge in 16
+    // did). 0: default, 2 in a set (by looking: on the demo design at 360 dpi a light cloud
+    // showed in two neighbouring cells at the same place, a motif doubled at the cell's lag).
+    int variants = 0;
     // P per cell image: the best P candidates are kept and split into A and B.
     // 0: default (600 for a single cell image, 32 per image of a set).
     int patches = 0;

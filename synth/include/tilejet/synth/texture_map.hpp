@@ -89,6 +89,11 @@ struct TextureMap {
     // the one made for its corners' colours, cell_images[tl + K tr + K^2 bl + K^3 br]. K = 1:
     // one cell image everywhere (the maps of format version 1 and earlier).
     int corner_colours = 1;
+    // V: cell images per combination of corner colours, cell_images[combination + K^4 v]. With
+    // V = 2 a cell shows variant (i + j) mod 2, so the cells either side of an edge show
+    // different variants and never the same image (with K = 2 and one image per combination,
+    // one edge in 16 joined two copies of one image: a motif doubled side by side).
+    int variants = 1;
     cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
     std::vector<CellImage> cell_images;
     BuildRecord build;
