@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tilejet/synth/colour_match.hpp"
+#include "tilejet/synth/statistics.hpp"
 
 namespace tilejet::cli {
 
@@ -50,14 +51,9 @@ SoftProofFigures check_soft_proof(const synth::Wall& wall, const colour::CmykTra
                                                 [](double d) { return d > kOutOfGamutDeltaE; })) /
                            double(std::max<size_t>(1, clipped.size()));
     std::vector<double> proof = delta_e2000(sample, production.proof(production.to_cmyk(sample)));
-    if (proof.empty()) return f;
-    double sum = 0;
-    for (double d : proof)
-        sum += d;
-    f.proof_delta_e2000_mean = sum / double(proof.size());
-    const auto k = proof.begin() + std::ptrdiff_t(double(proof.size() - 1) * 0.95);
-    std::nth_element(proof.begin(), k, proof.end());
-    f.proof_delta_e2000_p95 = *k;
+    const synth::Summary s = synth::summarize(proof, 0.95);
+    f.proof_delta_e2000_mean = s.mean;
+    f.proof_delta_e2000_p95 = s.percentile;
     return f;
 }
 

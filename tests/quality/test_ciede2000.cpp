@@ -13,6 +13,11 @@ TEST_CASE("CIEDE2000 matches the published test data", "[quality]") {
     CHECK(synth::ciede2000({50, 2.5, 0}, {73, 25, -18}) == Approx(27.1492).margin(1e-4));
     CHECK(synth::ciede2000({60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}) ==
           Approx(1.2644).margin(1e-4));
+    // The pairs that test the mean hue across 0°/360° (Sharma's 9, 11 and 13), where
+    // implementations go wrong.
+    CHECK(synth::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0009}) == Approx(7.1792).margin(1e-4));
+    CHECK(synth::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0011}) == Approx(7.2195).margin(1e-4));
+    CHECK(synth::ciede2000({50, -0.001, 2.49}, {50, 0.0009, -2.49}) == Approx(4.8045).margin(1e-4));
     CHECK(synth::ciede2000({50, 10, 10}, {50, 10, 10}) == 0);
 }
 

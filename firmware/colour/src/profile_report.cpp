@@ -1,10 +1,9 @@
 #include "tilejet/colour/profile_report.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 #include "icc_profile.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
+#include "tilejet/synth/colour_match.hpp"
+#include "tilejet/synth/statistics.hpp"
 
 namespace tilejet::colour {
 
@@ -27,20 +26,13 @@ ProfileReport check_profile(const std::filesystem::path& profile,
         const double ink[4] = {m.c, m.m, m.y, m.k};  // percent, as TYPE_CMYK_DBL takes
         cmsCIELab predicted;
         cmsDoTransform(predict.get(), ink, &predicted, 1);
-        const cmsCIELab measured{m.L, m.a, m.b};
-        errors.push_back(cmsCIE2000DeltaE(&measured, &predicted, 1, 1, 1));
+        errors.push_back(
+            synth::ciede2000({m.L, m.a, m.b}, {predicted.L, predicted.a, predicted.b}));
     }
+    const synth::Summary s = synth::summarize(errors, 0.95);
     ProfileReport report;
-    report.patches = errors.size();
-    if (errors.empty()) return report;
-    double sum = 0;
-    for (double e : errors)
-        sum += e;
-    report.mean = sum / double(errors.size());
-    std::sort(errors.begin(), errors.end());
-    report.p95 =
-        errors[std::min(errors.size() - 1, size_t(std::ceil(0.95 * double(errors.size()))) - 1)];
-    report.max = errors.back();
+    report.patches = s.count;
+    report.mean = s.mean, report.p95 = s.percentile, report.max = s.max;
     return report;
 }
 

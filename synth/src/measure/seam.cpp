@@ -1,10 +1,10 @@
 #include "tilejet/synth/seam.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "../lab.hpp"
 #include "../parallel_for.hpp"
+#include "tilejet/synth/statistics.hpp"
 
 namespace tilejet::synth {
 
@@ -16,17 +16,8 @@ float step(const cv::Vec3f& a, const cv::Vec3f& b) {
 }
 
 StepStats stats_of(std::vector<float>& steps) {
-    StepStats s;
-    s.count = steps.size();
-    if (steps.empty()) return s;
-    double sum = 0;
-    for (float v : steps)
-        sum += v;
-    s.mean = sum / double(steps.size());
-    const auto k = steps.begin() + std::ptrdiff_t(double(steps.size() - 1) * 0.99);
-    std::nth_element(steps.begin(), k, steps.end());
-    s.p99 = *k;
-    return s;
+    const Summary s = summarize(steps, 0.99);
+    return {s.mean, s.percentile, s.count};
 }
 
 // Steps between the neighbour pairs whose bits are set in `seams` (all pairs if empty).

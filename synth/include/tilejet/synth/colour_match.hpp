@@ -15,7 +15,7 @@ struct LabColour {
     double L = 0, a = 0, b = 0;
 };
 
-// CIEDE2000 colour difference (Sharma, Wu and Dalal 2005; kL = kC = kH = 1).
+// CIEDE2000 colour difference (Sharma, Wu and Dalal 2005; kL = kC = kH = 1), LittleCMS's.
 double ciede2000(const LabColour& x, const LabColour& y);
 
 // Mean CIELab colour of images (CV_8UC3 R,G,B) and their joint CIELab histogram.
