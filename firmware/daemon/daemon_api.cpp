@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "job_setup.hpp"
 #include "line_faults.hpp"
-#include "tile_renderer.hpp"
 #include "tilejet/api/job_request.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/synth/map_file.hpp"
@@ -283,7 +283,15 @@ std::string DaemonApi::tile_png(std::int64_t id, std::int64_t index, int max_sid
         throw api::ApiError(
             404, "tile",
             "tile: " + job->name() + " has tiles 0.." + std::to_string(job->spec.tiles - 1));
-    return previews_.tile_png(*job, index, max_side);
+    try {
+        return previews_.tile_png(*job, index, max_side);
+    } catch (const api::ApiError&) {
+        throw;
+    } catch (const std::exception& e) {
+        // The job's design or profile on disk cannot give its tiles (replaced, damaged): the
+        // job and the files disagree, which the panel shows rather than a picture of other tiles.
+        throw api::ApiError(409, "map", e.what());
+    }
 }
 
 std::string DaemonApi::wall_png(int tiles, int max_side) {

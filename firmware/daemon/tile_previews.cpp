@@ -5,10 +5,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "tile_renderer.hpp"
-#include "tilejet/colour/cmyk_map.hpp"
+#include "job_setup.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
-#include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/sampler.hpp"
 #include "tilejet/synth/tile_region.hpp"
 
@@ -21,13 +19,7 @@ constexpr int kSupersample = 2;      // samples per thumbnail pixel per axis: no
 constexpr int kGrout = 2;            // pixels between tiles on the wall preview
 }  // namespace
 
-struct TilePreviews::Prepared {
-    std::int64_t job = 0;
-    std::uint64_t seed = 0;
-    synth::TileGeometry geometry;
-    std::unique_ptr<colour::CmykTransform> transform;
-    std::shared_ptr<const synth::TextureMap> cmyk_map;
-};
+struct TilePreviews::Prepared : JobSetup {};
 
 TilePreviews::TilePreviews(colour::ColourSettings colour) : colour_(std::move(colour)) {}
 TilePreviews::~TilePreviews() = default;
@@ -41,15 +33,7 @@ std::shared_ptr<const TilePreviews::Prepared> TilePreviews::prepare(const jobs::
                 return prepared_.front();
             }
     }
-    auto p = std::make_shared<Prepared>();
-    p->job = job.id;
-    p->seed = job.spec.seed;
-    p->geometry = {tile_pixels(job.spec.tile_width_mm, job.spec.dpi),
-                   tile_pixels(job.spec.tile_height_mm, job.spec.dpi),
-                   synth::parse_tile_layout(job.spec.layout).value_or(synth::TileLayout::Scatter),
-                   job.spec.wall_width};
-    p->transform = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour_));
-    p->cmyk_map = colour::convert_map(synth::load_texture_map(job.spec.map), *p->transform);
+    auto p = std::make_shared<Prepared>(Prepared{set_up_job(job, colour_)});
     std::lock_guard lock(mutex_);
     prepared_.push_front(p);
     if (prepared_.size() > kPreparedJobs) prepared_.pop_back();

@@ -9,8 +9,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "tilejet/colour/cmyk_map.hpp"
-#include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::daemon {
@@ -18,10 +16,6 @@ namespace tilejet::daemon {
 namespace {
 constexpr int kPreviewSide = 2048;  // px: the previews written for a job's first tiles
 }  // namespace
-
-int tile_pixels(double mm, int dpi) {
-    return int(std::lround(mm / 25.4 * dpi));
-}
 
 namespace {
 
@@ -42,42 +36,24 @@ void reserve_tile_bytes(std::vector<std::uint8_t>& bytes, std::size_t size) {
 
 }  // namespace
 
-colour::ColourSettings job_colour(const jobs::JobSpec& spec, colour::ColourSettings base) {
-    if (!spec.profile.empty()) base.output_profile = spec.profile;
-    return base;
-}
-
 TileRenderer::TileRenderer(const jobs::Job& job, const colour::ColourSettings& colour,
                            std::filesystem::path previews, int preview_tiles)
-    : job_(job.id),
+    : setup_(set_up_job(job, colour)),
       previews_(std::move(previews)),
-      preview_tiles_(preview_tiles),
-      seed_(job.spec.seed) {
-    const auto layout = synth::parse_tile_layout(job.spec.layout);
-    geometry_ = {tile_pixels(job.spec.tile_width_mm, job.spec.dpi),
-                 tile_pixels(job.spec.tile_height_mm, job.spec.dpi),
-                 layout.value_or(synth::TileLayout::Scatter), job.spec.wall_width};
-    const synth::TextureMap map = synth::load_texture_map(job.spec.map);
-    const std::string map_id = map.id_hex();
-    if (!job.spec.map_id.empty() && map_id != job.spec.map_id)
-        throw std::runtime_error(job.name() + ": design file " + job.spec.map + " is now map " +
-                                 map_id + ", the job was submitted with map " + job.spec.map_id +
-                                 ": refusing to print other tiles under the same indices");
-    transform_ = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
-    if (!previews_.empty() && preview_tiles_ > 0) clear_stale_previews(job, map_id);
-    // Convert once, copy many (design.md section 4): every tile of the job only copies bytes.
-    cmyk_map_ = colour::convert_map(map, *transform_);
+      preview_tiles_(preview_tiles) {
+    if (!previews_.empty() && preview_tiles_ > 0) clear_stale_previews(job, setup_.map_id);
 }
 
 Separations TileRenderer::render(std::int64_t index, int threads,
                                  std::vector<std::uint8_t> buffer) const {
-    const synth::Region region = synth::tile_region(seed_, std::uint64_t(index), geometry_);
-    Separations s{job_, index, region.width, region.height, std::move(buffer)};
+    const synth::Region region =
+        synth::tile_region(setup_.seed, std::uint64_t(index), setup_.geometry);
+    Separations s{setup_.job, index, region.width, region.height, std::move(buffer)};
     const size_t size = size_t(region.width) * size_t(region.height) * 4;
     reserve_tile_bytes(s.bytes, size);
     s.bytes.resize(size);
-    synth::render_region(*cmyk_map_, seed_, region, s.bytes.data(), size_t(region.width) * 4,
-                         threads);
+    synth::render_region(*setup_.cmyk_map, setup_.seed, region, s.bytes.data(),
+                         size_t(region.width) * 4, threads);
     if (index < preview_tiles_ && !previews_.empty() &&
         !std::filesystem::exists(preview_path(index)))
         write_preview(s, preview_path(index));
@@ -89,7 +65,7 @@ void TileRenderer::clear_stale_previews(const jobs::Job& job, const std::string&
     // reinstall) numbers its jobs from 1 again: proofs left by another job of that number,
     // of another design, would be shown as this one's. A stamp says whose they are.
     namespace fs = std::filesystem;
-    const fs::path dir = previews_ / ("job-" + std::to_string(job_));
+    const fs::path dir = previews_ / ("job-" + std::to_string(setup_.job));
     const std::string stamp = "created " + job.created + ", map " + map_id + ", seed " +
                               std::to_string(job.spec.seed) + "\n";
     std::error_code ec;
@@ -102,7 +78,8 @@ void TileRenderer::clear_stale_previews(const jobs::Job& job, const std::string&
 }
 
 std::filesystem::path TileRenderer::preview_path(std::int64_t index) const {
-    return previews_ / ("job-" + std::to_string(job_)) / ("tile-" + std::to_string(index) + ".png");
+    return previews_ / ("job-" + std::to_string(setup_.job)) /
+           ("tile-" + std::to_string(index) + ".png");
 }
 
 void TileRenderer::write_preview(const Separations& tile, const std::filesystem::path& png) const {
@@ -118,7 +95,7 @@ void TileRenderer::write_preview(const Separations& tile, const std::filesystem:
                    {std::max(1, int(tile.width * scale)), std::max(1, int(tile.height * scale))}, 0,
                    0, cv::INTER_AREA);
     cv::Mat bgr;
-    cv::cvtColor(transform_->proof(small), bgr, cv::COLOR_RGB2BGR);
+    cv::cvtColor(setup_.transform->proof(small), bgr, cv::COLOR_RGB2BGR);
     std::filesystem::create_directories(png.parent_path());
     cv::imwrite(png.string(), bgr);
 }

@@ -1,23 +1,13 @@
 #pragma once
 
-// TileRenderer: everything one job needs to render its tiles: the texture map converted once
-// to the job's CMYK pipeline, and the tile geometry from millimetres and dpi.
+// TileRenderer: a job's tiles as the heads' separations (its JobSetup), and sRGB proofs of the
+// first few for the operator.
 #include <filesystem>
-#include <memory>
 
+#include "job_setup.hpp"
 #include "separations.hpp"
-#include "tilejet/colour/cmyk_transform.hpp"
-#include "tilejet/jobs/job.hpp"
-#include "tilejet/synth/texture_map.hpp"
-#include "tilejet/synth/tile_region.hpp"
 
 namespace tilejet::daemon {
-
-// Tile size in pixels from millimetres at `dpi` (rounded to the nearest pixel).
-int tile_pixels(double mm, int dpi);
-
-// The job's colour pipeline: [colour] with the job's profile when it names one.
-colour::ColourSettings job_colour(const jobs::JobSpec& spec, colour::ColourSettings base);
 
 class TileRenderer {
   public:
@@ -33,20 +23,16 @@ class TileRenderer {
     // An sRGB soft proof of a tile, for previews.
     void write_preview(const Separations& tile, const std::filesystem::path& png) const;
 
-    std::int64_t job() const { return job_; }
-    const synth::TileGeometry& geometry() const { return geometry_; }
+    std::int64_t job() const { return setup_.job; }
+    const synth::TileGeometry& geometry() const { return setup_.geometry; }
     std::filesystem::path preview_path(std::int64_t index) const;
 
   private:
     void clear_stale_previews(const jobs::Job& job, const std::string& map_id) const;
 
-    std::int64_t job_;
+    JobSetup setup_;
     std::filesystem::path previews_;
     int preview_tiles_ = 0;
-    std::uint64_t seed_;
-    synth::TileGeometry geometry_;
-    std::unique_ptr<colour::CmykTransform> transform_;
-    std::shared_ptr<const synth::TextureMap> cmyk_map_;
 };
 
 }  // namespace tilejet::daemon

@@ -468,6 +468,11 @@ TEST_CASE("a job pins its design: a design file replaced before the job resumes 
     CHECK(message.find(design.string()) != std::string::npos);
     CHECK(message.find(submitted_id) != std::string::npos);
     CHECK(message.find("is now map ") != std::string::npos);
+    // The panel's pictures come from the same job setup: no preview of the other design's tiles.
+    const auto [preview_status, preview] =
+        daemon.request("GET", "/api/jobs/" + std::to_string(id) + "/tiles/0.png");
+    CHECK(preview_status == 409);
+    CHECK(preview.value("error", "").find("is now map ") != std::string::npos);
 }
 
 TEST_CASE("previews left by another job of the same number are replaced, not shown as this job's",

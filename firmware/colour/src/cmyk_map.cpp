@@ -11,22 +11,4 @@ std::shared_ptr<const synth::TextureMap> convert_map(const synth::TextureMap& ma
     return converted;
 }
 
-std::shared_ptr<const synth::TextureMap> CmykMapCache::get(const synth::TextureMap& map,
-                                                           const CmykTransform& transform) {
-    const std::string key = map.id_hex() + "/" + transform.key();
-    {
-        std::lock_guard lock(mutex_);
-        if (auto it = maps_.find(key); it != maps_.end()) return it->second;
-    }
-    // Converted outside the lock: two threads may both convert once; both results are equal.
-    auto converted = convert_map(map, transform);
-    std::lock_guard lock(mutex_);
-    return maps_.emplace(key, std::move(converted)).first->second;
-}
-
-size_t CmykMapCache::size() const {
-    std::lock_guard lock(mutex_);
-    return maps_.size();
-}
-
 }  // namespace tilejet::colour

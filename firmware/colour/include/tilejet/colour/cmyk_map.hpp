@@ -6,9 +6,6 @@
 // C,M,Y,K directly.
 
 #include <memory>
-#include <mutex>
-#include <string>
-#include <unordered_map>
 
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/synth/texture_map.hpp"
@@ -17,17 +14,5 @@ namespace tilejet::colour {
 
 std::shared_ptr<const synth::TextureMap> convert_map(const synth::TextureMap& map,
                                                      const CmykTransform& transform);
-
-// Converted maps kept by (map id, transform key). Thread-safe.
-class CmykMapCache {
-  public:
-    std::shared_ptr<const synth::TextureMap> get(const synth::TextureMap& map,
-                                                 const CmykTransform& transform);
-    size_t size() const;
-
-  private:
-    mutable std::mutex mutex_;
-    std::unordered_map<std::string, std::shared_ptr<const synth::TextureMap>> maps_;
-};
 
 }  // namespace tilejet::colour
