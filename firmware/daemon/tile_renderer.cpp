@@ -3,7 +3,6 @@
 #include <sys/mman.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -14,10 +13,8 @@
 namespace tilejet::daemon {
 
 namespace {
-constexpr int kPreviewSide = 2048;  // px: the previews written for a job's first tiles
-}  // namespace
 
-namespace {
+constexpr int kPreviewSide = 2048;  // px: the previews written for a job's first tiles
 
 // A fresh tile buffer is 289 MB at 600 mm and 360 dpi: faulted in 4 KB pages that is 70 000 page
 // faults, and rendering into fresh memory took 8 times as long as into a recycled buffer. Huge
