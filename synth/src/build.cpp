@@ -33,7 +33,6 @@ using namespace detail;
 constexpr int kCandidatesPerPatch = 40;
 constexpr int kDefaultPatches = 600;
 constexpr int kDefaultPatchesPerSetImage = 32;
-constexpr int kDefaultSetVariants = 2;
 constexpr int kCandidatesPerSetPatch = 8;
 constexpr int kOffsetDrawsInSet = 24;
 constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
@@ -327,10 +326,6 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     const int source_side = std::min(map.source.cols, map.source.rows);
     const CellGrid grid(cell_size.width, cell_size.height);
 
-    // A lattice's second variant would share the source with the first (cell_set.hpp).
-    const int variants = params.variants != 0                         ? params.variants
-                         : corner_colours == 1 || lattice.has_value() ? 1
-                                                                      : kDefaultSetVariants;
     if (corner_colours == 1) {
         if (progress) progress("cell image", 0, 1);
         CellImage image;
@@ -352,9 +347,9 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     } else {
         if (progress) progress("cell set", 0, 1);
         const CellSet set(map.source, source_lab,
-                          {cell_size, corner_colours, variants, params.seed, threads,
+                          {cell_size, corner_colours, params.variants, params.seed, threads,
                            lattice ? &*lattice : nullptr});
-        map.corner_colours = corner_colours, map.variants = variants;
+        map.corner_colours = corner_colours, map.variants = set.variants();
         // Patches as large as a third of the cell where their seams are good: the size classes
         // of best_candidates keep the large ones that fit.
         const int max_radius = std::max(2, std::min(cell / 3, (source_side / 2 - 2) * 2 / 3));

@@ -71,6 +71,8 @@ struct Canvas {
     // costs that much again, and the first one too in what neighbours share.
     const cv::Mat* conspicuous = nullptr;
     bool shared = false;
+    // The uses conspicuous pixels are charged for, when not `usage`: those of every variant.
+    const cv::Mat* conspicuous_uses = nullptr;
     // Large cells: the block search looks at twice the block (kSearchWindow).
     bool wide_search = false;
 
@@ -159,17 +161,10 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     const double variance = deviation.dot(deviation);
     usage_weight_ = kUsageCost * variance;
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
-    // its 1843 px source twice, an 8192 px slab a tenth of its source.
-    const int variants = std::max(1, params.variants);
-    // A second variant quilts its insides from the source turned half a turn: its own budget of
-    // source, with the same statistics (a half turn keeps every orientation and the
-    // autocorrelation). Drawn from the same source as the first, the demo design's 32 images at
-    // 360 dpi used up its calm places and copied its white vein in straight-sided shards all
-    // over the plane. A lattice's phase does not survive the turn; there both variants share the
-    // source and its budget.
-    turned_ = variants > 1 && !params.lattice;
-    const double reuse = double(k_) * k_ * k_ * k_ * (turned_ ? 1 : variants) * cw_ * ch_ /
-                         (double(source_lab.cols) * source_lab.rows);
+    // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
+    // its own account of what it copied (below).
+    const double reuse =
+        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
     large_ = side > kLargeCell && reuse >= 1;
     if (large_) {
         // Squared CIELab distance from the mean, less what is still typical, in units of the
@@ -181,11 +176,6 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         cv::GaussianBlur(z2, z2, {0, 0}, std::max(1.0, side / 16.0));
         conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
         if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
-    }
-    if (turned_) {
-        cv::rotate(source_rgb, turned_rgb_, cv::ROTATE_180);
-        cv::rotate(source_lab, turned_lab_, cv::ROTATE_180);
-        if (!conspicuous_.empty()) cv::rotate(conspicuous_, turned_conspicuous_, cv::ROTATE_180);
     }
     choose_corner_blocks();
     const size_t kinds = size_t(k_) * size_t(k_);
@@ -200,26 +190,35 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         count_uses(usage, blocks);
     }
     // Images are made in batches of a fixed size, whatever the threads, so that each avoids the
-    // blocks of the batches before it and the set stays the same bytes on every machine. A
-    // turned variant keeps its own account of what it copied, in the turned source's pixels.
+    // blocks of the batches before it and the set stays the same bytes on every machine.
+    // A second variant is made as the first was, from what the strips left: its own account
+    // of what it copied and of where, so that it draws on the whole source as the first did.
+    // Charged for the first's copies too, or kept off the windows the first copied to the same
+    // place, the demo's 32 images at 360 dpi ran out of calm places and copied its white vein in
+    // straight-sided shards all over the plane. Quilted from the source turned half a turn, the
+    // corpus's texture energy rose by a third (gravel lit from the other side).
     const size_t combinations = kinds * kinds;
-    images_.resize(combinations * size_t(variants));
-    std::vector<Placement> placed, placed_turned;
-    cv::Mat usage_turned(source_lab.size(), CV_32F, cv::Scalar(0));
-    for (size_t variant = 0; variant < size_t(variants); ++variant) {
-        const bool turned = turned_ && variant > 0;
-        std::vector<Placement>& avoid = turned ? placed_turned : placed;
-        cv::Mat& used = turned ? usage_turned : usage;
+    const size_t variants = size_t(params.variants > 0 ? params.variants : large_ ? 2 : 1);
+    images_.resize(combinations * variants);
+    // But the source's conspicuous features are charged for every copy any variant made: a
+    // vein shows in about one image of the whole set, not one of each variant (the demo's white
+    // vein stood as a straight-sided block in a second-variant image).
+    std::vector<Placement> placed;
+    const cv::Mat after_strips = variants > 1 ? usage.clone() : cv::Mat();
+    cv::Mat all_uses = usage.clone();
+    for (size_t variant = 0; variant < variants; ++variant) {
+        if (variant > 0) after_strips.copyTo(usage), placed.clear();
         for (size_t begin = 0; begin < combinations; begin += kImageBatch) {
             const size_t end = std::min(combinations, begin + kImageBatch);
             const size_t first = variant * combinations + begin;
             std::vector<std::vector<Placement>> batch(end - begin);
             parallel_for(end - begin, params.threads, [&](size_t i) {
-                images_[first + i] = make_image(first + i, avoid, used, batch[i]);
+                images_[first + i] = make_image(first + i, placed, usage, all_uses, batch[i]);
             });
             for (const auto& b : batch) {
-                avoid.insert(avoid.end(), b.begin(), b.end());
-                count_uses(used, b);
+                placed.insert(placed.end(), b.begin(), b.end());
+                count_uses(usage, b);
+                count_uses(all_uses, b);
             }
         }
     }
@@ -276,7 +275,8 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             // Uses by other images and strips only: this canvas's own blocks are where a block
             // continuing them copies from, and a vein continued is not a vein repeated (counted,
             // they pushed blocks off the vein's continuation, and cuts ran straight across it).
-            const cv::Mat& others = *canvas.usage;
+            const cv::Mat& others =
+                canvas.conspicuous_uses ? *canvas.conspicuous_uses : *canvas.usage;
             cost = per_use * used + canvas.conspicuous->mul(canvas.shared ? others + 1 : others);
             scale = 1;
         }
@@ -431,7 +431,7 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
 }
 
 cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
-                            std::vector<Placement>& placed) const {
+                            const cv::Mat& all_uses, std::vector<Placement>& placed) const {
     const size_t k = size_t(k_);
     const uint32_t tl = uint32_t(index % k), tr = uint32_t(index / k % k),
                    bl = uint32_t(index / k / k % k), br = uint32_t(index / k / k / k % k);
@@ -479,17 +479,16 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge.
     canvas.locked.setTo(255);
     canvas.locked(cv::Rect(1, 1, cw_ - 2, ch_ - 2)).setTo(0);
-    const bool turned = turned_ && index >= k * k * k * k;
     canvas.avoid = &avoid;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {
-        canvas.conspicuous = turned ? &turned_conspicuous_ : &conspicuous_;
+        canvas.conspicuous = &conspicuous_;
+        canvas.conspicuous_uses = &all_uses;
         canvas.wide_search = true;
     }
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
-    quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_,
-               turned ? turned_rgb_ : source_rgb_, turned ? turned_lab_ : source_lab_,
+    quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
                params_.lattice, {0, 0}, rng);
     placed = std::move(canvas.placed);
     return canvas.rgb;

@@ -36,10 +36,11 @@ struct Placement {
 struct CellSetParams {
     cv::Size cell;
     int corner_colours = 2;  // K: K^4 combinations of corner colours
-    // V images per combination, K^4 V in all. Each variant is quilted like the first, with the
-    // same frame (its corners' strips) and its own inside: the second from the source turned
-    // half a turn (when there is no lattice), with its own account of what it copied.
-    int variants = 1;
+    // V images per combination, K^4 V in all (corner_colours.hpp). Each variant is quilted as
+    // the first, with the same frame (its corners' strips) and its own inside, from its own
+    // account of what it copied. 0: 2 for large cells whose set copies its source more than
+    // once (kLargeCell), else 1.
+    int variants = 0;
     uint64_t seed = 1;
     int threads = 0;
     // Near-regular exemplars: every block and strip copies from a lattice translation (+-3 px)
@@ -54,6 +55,7 @@ class CellSet {
     CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params);
 
     size_t size() const { return images_.size(); }
+    int variants() const { return int(images_.size() / size_t(k_ * k_ * k_ * k_)); }
     // Cell image tl + K tr + K^2 bl + K^3 br + K^4 variant (the order of corner_colours.hpp),
     // CV_8UC3 R,G,B.
     const cv::Mat& image(size_t index) const { return images_[index]; }
@@ -76,7 +78,7 @@ class CellSet {
     // Image `index`, none of whose blocks copies a source window of `avoid` to the same place;
     // its own blocks go to `placed`.
     cv::Mat make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
-                       std::vector<Placement>& placed) const;
+                       const cv::Mat& all_uses, std::vector<Placement>& placed) const;
 
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;
@@ -88,9 +90,6 @@ class CellSet {
     cv::Mat conspicuous_;  // large cells only
     // Cells over kLargeCell that copy their source more than once: conspicuous cost, wide search.
     bool large_ = false;
-    // The second variant's source: the source, its CIELab and conspicuous cost turned 180°.
-    bool turned_ = false;
-    cv::Mat turned_rgb_, turned_lab_, turned_conspicuous_;
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
     // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.
