@@ -524,9 +524,9 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
             r.fail("variants " + std::to_string(v) + " is out of range (1 to " +
                    std::to_string(kMaxVariants) + ")");
         if (uint64_t(k) * k * k * k * v != images)
-            r.fail(std::to_string(k) + " corner colours and " + std::to_string(v) +
-                   " variants need " + std::to_string(k * k * k * k * v) +
-                   " cell images, the map holds " + std::to_string(images));
+            r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
+                   " need " + std::to_string(k * k * k * k * v) + " cell images, the map holds " +
+                   std::to_string(images));
         map.corner_colours = int(k), map.variants = int(v);
     }
     {
