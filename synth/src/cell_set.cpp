@@ -205,7 +205,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // vein stood as a straight-sided block in a second-variant image).
     std::vector<Placement> placed;
     const cv::Mat after_strips = variants > 1 ? usage.clone() : cv::Mat();
-    cv::Mat all_uses = usage.clone();
+    cv::Mat all_uses = variants > 1 ? usage.clone() : cv::Mat();  // one variant: `usage`
     for (size_t variant = 0; variant < variants; ++variant) {
         if (variant > 0) after_strips.copyTo(usage), placed.clear();
         for (size_t begin = 0; begin < combinations; begin += kImageBatch) {
@@ -213,12 +213,13 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
             const size_t first = variant * combinations + begin;
             std::vector<std::vector<Placement>> batch(end - begin);
             parallel_for(end - begin, params.threads, [&](size_t i) {
-                images_[first + i] = make_image(first + i, placed, usage, all_uses, batch[i]);
+                images_[first + i] =
+                    make_image(first + i, placed, usage, variants > 1 ? all_uses : usage, batch[i]);
             });
             for (const auto& b : batch) {
                 placed.insert(placed.end(), b.begin(), b.end());
                 count_uses(usage, b);
-                count_uses(all_uses, b);
+                if (variants > 1) count_uses(all_uses, b);
             }
         }
     }
