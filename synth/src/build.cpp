@@ -6,6 +6,7 @@
 #include <optional>
 #include <thread>
 
+#include "block_quilting.hpp"
 #include "candidate_patch.hpp"
 #include "cell_set.hpp"
 #include "grain.hpp"
@@ -15,7 +16,6 @@
 #include "parallel_for.hpp"
 #include "patch_overlap.hpp"
 #include "pseudo_biclique.hpp"
-#include "quilting.hpp"
 #include "tilejet/synth/colour_gain.hpp"
 #include "tilejet/synth/enm.hpp"
 #include "tilejet/synth/error.hpp"

@@ -1,4 +1,4 @@
-#include "quilting.hpp"
+#include "block_quilting.hpp"
 
 #include <algorithm>
 #include <cmath>

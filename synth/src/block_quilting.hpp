@@ -1,5 +1,9 @@
 #pragma once
 
+// Block quilting (Efros and Freeman 2001), the engine under every quilted image but the cell
+// sets': blocks found by an FFT block search, joined along minimum-cost paths, over a canvas that
+// wraps (a one-image map's cell image, an exemplar's enlargement) or not (quilt.hpp's images).
+
 #include <opencv2/core/mat.hpp>
 
 #include "lattice_alignment.hpp"
