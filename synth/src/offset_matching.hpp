@@ -23,8 +23,8 @@ struct OffsetSearch {
     // offer the caller one place several times.
     int spread = 8;
     // Searches a random window of the source this many positions across (0: all of it), as
-    // block_quilting.cpp does on large exemplars: a set quilts over a thousand blocks, and the search
-    // over a 512 px source took a 512 px map build past its minute.
+    // block_quilting.cpp does on large exemplars: a set quilts over a thousand blocks, and the
+    // search over a 512 px source took a 512 px map build past its minute.
     int window = 0;
     // Added to the match cost of each source position (CV_32F, one per window position over the
     // whole source), or none.
