@@ -175,8 +175,8 @@ void add_map_commands(CLI::App& app) {
         "(default 2)");
     b->add_option("--variants", build->params.variants,
                   "cell images per combination of corner colours, 1 or 2: with 2 the cells "
-                  "across an edge never show the same image (default 2; 1 on a lattice and for "
-                  "one cell image)");
+                  "across an edge never show the same image (default 2 for cells over 320 px whose "
+                  "set copies its source more than once, else 1)");
     b->add_option("--patches", build->params.patches,
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,
