@@ -272,6 +272,16 @@ json DaemonApi::command(std::string_view name) {
     return {{"accepted", std::string(name)}};
 }
 
+namespace {
+
+// The job's design or profile on disk cannot give its tiles (replaced, damaged): the job and
+// the files disagree, which the panel shows rather than a picture of other tiles.
+api::ApiError job_files_disagree(const JobSetupError& e) {
+    return api::ApiError(409, "map", e.what());
+}
+
+}  // namespace
+
 std::string DaemonApi::tile_png(std::int64_t id, std::int64_t index, int max_side) {
     std::optional<jobs::Job> job;
     {
@@ -285,12 +295,8 @@ std::string DaemonApi::tile_png(std::int64_t id, std::int64_t index, int max_sid
             "tile: " + job->name() + " has tiles 0.." + std::to_string(job->spec.tiles - 1));
     try {
         return previews_.tile_png(*job, index, max_side);
-    } catch (const api::ApiError&) {
-        throw;
-    } catch (const std::exception& e) {
-        // The job's design or profile on disk cannot give its tiles (replaced, damaged): the
-        // job and the files disagree, which the panel shows rather than a picture of other tiles.
-        throw api::ApiError(409, "map", e.what());
+    } catch (const JobSetupError& e) {
+        throw job_files_disagree(e);
     }
 }
 
@@ -303,7 +309,11 @@ std::string DaemonApi::wall_png(int tiles, int max_side) {
         if (job) indices = store_.printed_tiles(job->id, tiles);
     }
     if (!job || indices.empty()) throw api::ApiError(404, "", "no tiles printed yet");
-    return previews_.wall_png(*job, indices, max_side);
+    try {
+        return previews_.wall_png(*job, indices, max_side);
+    } catch (const JobSetupError& e) {
+        throw job_files_disagree(e);
+    }
 }
 
 json DaemonApi::designs() {

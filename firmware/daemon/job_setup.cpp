@@ -1,7 +1,6 @@
 #include "job_setup.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 #include "tilejet/colour/cmyk_map.hpp"
 #include "tilejet/synth/map_file.hpp"
@@ -25,13 +24,18 @@ JobSetup set_up_job(const jobs::Job& job, const colour::ColourSettings& colour) 
                   tile_pixels(job.spec.tile_height_mm, job.spec.dpi),
                   synth::parse_tile_layout(job.spec.layout).value_or(synth::TileLayout::Scatter),
                   job.spec.wall_width};
-    const synth::TextureMap map = synth::load_texture_map(job.spec.map);
+    synth::TextureMap map;
+    try {
+        map = synth::load_texture_map(job.spec.map);
+        s.transform = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
+    } catch (const std::exception& e) {  // the map or profile file, named in the message
+        throw JobSetupError(e.what());
+    }
     s.map_id = map.id_hex();
     if (!job.spec.map_id.empty() && s.map_id != job.spec.map_id)
-        throw std::runtime_error(job.name() + ": design file " + job.spec.map + " is now map " +
-                                 s.map_id + ", the job was submitted with map " + job.spec.map_id +
-                                 ": refusing to print other tiles under the same indices");
-    s.transform = std::make_unique<colour::CmykTransform>(job_colour(job.spec, colour));
+        throw JobSetupError(job.name() + ": design file " + job.spec.map + " is now map " +
+                            s.map_id + ", the job was submitted with map " + job.spec.map_id +
+                            ": refusing to print other tiles under the same indices");
     s.cmyk_map = colour::convert_map(map, *s.transform);
     return s;
 }

@@ -6,6 +6,7 @@
 // CMYK (convert once, copy many: design.md section 4).
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "tilejet/colour/cmyk_transform.hpp"
@@ -30,9 +31,13 @@ struct JobSetup {
     std::shared_ptr<const synth::TextureMap> cmyk_map;
 };
 
-// Loads the job's design and builds its transform; throws naming the map or profile file, and
-// refuses a design file that is no longer the map the job was submitted with (its tiles would
-// be other tiles under the same indices).
+// A job's design or profile file is missing, damaged, or no longer the map the job was
+// submitted with (its tiles would be other tiles under the same indices); the message names it.
+struct JobSetupError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Loads the job's design and builds its transform; throws JobSetupError.
 JobSetup set_up_job(const jobs::Job& job, const colour::ColourSettings& colour);
 
 }  // namespace tilejet::daemon

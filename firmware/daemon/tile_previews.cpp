@@ -19,12 +19,10 @@ constexpr int kSupersample = 2;      // samples per thumbnail pixel per axis: no
 constexpr int kGrout = 2;            // pixels between tiles on the wall preview
 }  // namespace
 
-struct TilePreviews::Prepared : JobSetup {};
-
 TilePreviews::TilePreviews(colour::ColourSettings colour) : colour_(std::move(colour)) {}
 TilePreviews::~TilePreviews() = default;
 
-std::shared_ptr<const TilePreviews::Prepared> TilePreviews::prepare(const jobs::Job& job) {
+std::shared_ptr<const JobSetup> TilePreviews::prepare(const jobs::Job& job) {
     {
         std::lock_guard lock(mutex_);
         for (auto it = prepared_.begin(); it != prepared_.end(); ++it)
@@ -33,7 +31,7 @@ std::shared_ptr<const TilePreviews::Prepared> TilePreviews::prepare(const jobs::
                 return prepared_.front();
             }
     }
-    auto p = std::make_shared<Prepared>(Prepared{set_up_job(job, colour_)});
+    auto p = std::make_shared<const JobSetup>(set_up_job(job, colour_));
     std::lock_guard lock(mutex_);
     prepared_.push_front(p);
     if (prepared_.size() > kPreparedJobs) prepared_.pop_back();

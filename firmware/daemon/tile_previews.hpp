@@ -18,6 +18,8 @@
 
 namespace tilejet::daemon {
 
+struct JobSetup;  // job_setup.hpp
+
 class TilePreviews {
   public:
     explicit TilePreviews(colour::ColourSettings colour);
@@ -31,15 +33,14 @@ class TilePreviews {
                          int max_side);
 
   private:
-    struct Prepared;
-    std::shared_ptr<const Prepared> prepare(const jobs::Job& job);
+    std::shared_ptr<const JobSetup> prepare(const jobs::Job& job);
     std::string cached(const std::tuple<std::int64_t, std::int64_t, int>& key,
                        const std::function<std::string()>& make);
 
     colour::ColourSettings colour_;
     std::mutex render_mutex_;                                 // one picture at a time
     std::mutex mutex_;                                        // the caches
-    std::list<std::shared_ptr<const Prepared>> prepared_;     // most recent first, a few jobs
+    std::list<std::shared_ptr<const JobSetup>> prepared_;     // most recent first, a few jobs
     using Key = std::tuple<std::int64_t, std::int64_t, int>;  // job, tile, size
     std::list<std::pair<Key, std::string>> pngs_;             // most recent first
 };
