@@ -1,4 +1,4 @@
-// tilejet eval: the quality report of a design (design.md section 8, issue 8). Four walls of
+// tilejet eval: the quality report of a design (docs/design.md section 8, issue 8). Four walls of
 // the same tiles: tilejet's, and the baselines canvas (today's factory practice), cell (the
 // cell image alone) and quilt (every tile quilted on its own); each measured the same way.
 

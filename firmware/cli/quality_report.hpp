@@ -1,6 +1,6 @@
 #pragma once
 
-// The quality report's pictures and page (design.md section 8): pictures first, figures beside
+// The quality report's pictures and page (docs/design.md section 8): pictures first, figures beside
 // them. PNGs are written with OpenCV; the plots are inline SVG in index.html.
 
 #include <filesystem>

@@ -3,7 +3,7 @@
 // JobSetup: what rendering one job's tiles takes, made one way for the heads' separations
 // (TileRenderer) and the panel's pictures (TilePreviews): the tile geometry from millimetres
 // and dpi, the job's colour transform, and its texture map converted once to that transform's
-// CMYK (convert once, copy many: design.md section 4).
+// CMYK (convert once, copy many: docs/design.md section 4).
 #include <cstdint>
 #include <memory>
 #include <stdexcept>

@@ -1,6 +1,6 @@
 #pragma once
 
-// The daemon's states (design.md section 6). Every transition is one log line with its reason,
+// The daemon's states (docs/design.md section 6). Every transition is one log line with its reason,
 // so the journal tells why the line stopped.
 #include <chrono>
 #include <string>

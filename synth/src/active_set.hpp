@@ -11,8 +11,8 @@ namespace tilejet::synth::detail {
 uint64_t cell_key(uint64_t map_id, uint64_t seed, uint32_t cell_image, CellType type, int64_t i,
                   int64_t j);
 
-// Activation (design.md section 3.2): fills `active` with the patches k of `set`, ascending, for
-// which splitmix64(key + (k + 1) * golden) < activation_threshold.
+// Activation (docs/design.md section 3.2): fills `active` with the patches k of `set`,
+// ascending, for which splitmix64(key + (k + 1) * golden) < activation_threshold.
 void activate(const PatchSet& set, uint64_t key, std::vector<uint16_t>& active);
 
 // Overlap removal (section 3.3): while two patches of `active` overlap, drops the one with the

@@ -37,7 +37,7 @@ struct CandidateSpace {
     int offset_draws = 1;
 };
 
-// Candidate number `seed` (design.md section 2.4): a random cell position p, source position q
+// Candidate number `seed` (docs/design.md section 2.4): a random cell position p, source position q
 // and size r; in a window of radius 1.5 r around p a min-cut (Boykov-Kolmogorov max-flow)
 // separates "take the source" (forced in a core around p) from "keep the cell image" (forced
 // on the rim, outside the cell's diamond and where the canvas is not exact). Edge s-t costs

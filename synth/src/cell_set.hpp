@@ -1,6 +1,6 @@
 #pragma once
 
-// A corner-coloured set of cell images (design.md section 9; Lagae and Dutré 2006, "An
+// A corner-coloured set of cell images (docs/design.md section 9; Lagae and Dutré 2006, "An
 // alternative for Wang tiles: colored edges versus colored corners"), each image quilted.
 //
 // Every lattice vertex has one of K colours; a cell's image is the one made for its four

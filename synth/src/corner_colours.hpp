@@ -1,11 +1,11 @@
 #pragma once
 
-// Which cell image a cell shows (design.md section 9). Every lattice vertex (i, j), the top-left
-// corner of cell (i, j), gets one of K colours by integer hash of (map, seed, i, j); a cell shows
-// the image made for its four corners' colours (of the variant of its parity, when a set has two).
-// Neighbouring cells share two corners, and the images of a set are built so that any two that
-// share corner colours meet seamlessly (cell_set.hpp), so whatever the hash picks is seamless, and
-// neither a cell image nor an edge nor a corner lies on a grid.
+// Which cell image a cell shows (docs/design.md section 9). Every lattice vertex (i, j), the
+// top-left corner of cell (i, j), gets one of K colours by integer hash of (map, seed, i, j); a
+// cell shows the image made for its four corners' colours (of the variant of its parity, when a
+// set has two). Neighbouring cells share two corners, and the images of a set are built so that
+// any two that share corner colours meet seamlessly (cell_set.hpp), so whatever the hash picks
+// is seamless, and neither a cell image nor an edge nor a corner lies on a grid.
 
 #include <cstdint>
 

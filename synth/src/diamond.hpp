@@ -1,6 +1,6 @@
 #pragma once
 
-// Cell diamonds (design.md sections 2.5 and 3.1). Cell (i, j) covers [i*Cx, (i+1)*Cx) x
+// Cell diamonds (docs/design.md sections 2.5 and 3.1). Cell (i, j) covers [i*Cx, (i+1)*Cx) x
 // [j*Cy, (j+1)*Cy); it is of type A when i + j is even. The diamond of a cell is
 // |dx|/Cx + |dy|/Cy <= 1 around its centre. Rotated to u = x/Cx + y/Cy, v = x/Cx - y/Cy the
 // diamonds of one type become an axis-aligned grid of 2 x 2 squares, so finding a pixel's cell is

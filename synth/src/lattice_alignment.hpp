@@ -9,9 +9,10 @@
 namespace tilejet::synth::detail {
 
 // Translations that keep a near-regular texture's structure: the lattice's points, give or take
-// a few pixels (design.md section 7: offsets restricted to lattice translations within +-3 px).
-// For courses: any distance along them, whole pitches across them, give or take a twelfth of
-// the pitch (a brick wall's mortar is a pixel or two thick on a 17 px pitch: 3 px broke it).
+// a few pixels (docs/design.md section 7: offsets restricted to lattice translations within
+// +-3 px). For courses: any distance along them, whole pitches across them, give or take a
+// twelfth of the pitch (a brick wall's mortar is a pixel or two thick on a 17 px pitch: 3 px
+// broke it).
 class LatticeTranslations {
   public:
     static constexpr int kTolerance = 3;  // px

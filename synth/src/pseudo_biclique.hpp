@@ -13,7 +13,7 @@ struct BicliqueSplit {
 };
 
 // Splits patches 0..n-1 into sets A and B such that no member of A conflicts with any member
-// of B (design.md section 2.6). `conflict` is an n x n symmetric matrix, row-major. Greedy:
+// of B (docs/design.md section 2.6). `conflict` is an n x n symmetric matrix, row-major. Greedy:
 // seed with a non-conflicting pair, then alternately add to A a random patch that conflicts with
 // nothing in B and to B one that conflicts with nothing in A, until every patch is placed or none
 // fits either side.

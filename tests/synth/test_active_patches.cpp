@@ -1,4 +1,4 @@
-// Properties of the online sampler's patch activation (design.md section 3), checked by
+// Properties of the online sampler's patch activation (docs/design.md section 3), checked by
 // rasterizing masks independently of the renderer.
 
 #include <catch2/catch.hpp>
@@ -88,7 +88,7 @@ TEST_CASE("activation frequency matches eta", "[sampler][statistics]") {
     const TextureMap& map = small_map();
     const PatchSet& set = map.cell_images.front().a;
     const double n = double(set.size());
-    const double eta = map.build.active_per_cell / n;  // the design's eta = 10 / |set|
+    const double eta = map.build.active_per_cell / n;  // docs/design.md section 3.2
     std::mt19937_64 rng(99);
     const int cells = 20000;
     std::vector<int> hits(set.size(), 0);

@@ -1,5 +1,5 @@
-// Corner-coloured cell sets (design.md section 9): seamless neighbours whatever the hash picks,
-// uniform choice, rendering equal to sampling, old one-image maps unchanged, and no grid.
+// Corner-coloured cell sets (docs/design.md section 9): seamless neighbours whatever the hash
+// picks, uniform choice, rendering equal to sampling, old one-image maps unchanged, and no grid.
 
 #include <openssl/evp.h>
 

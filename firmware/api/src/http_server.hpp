@@ -1,7 +1,7 @@
 #pragma once
 
 // HttpServer: HTTP/1.1 on GNU libmicrohttpd, with every resource a client can make it spend
-// bounded by design (design.md, "Hostile clients"):
+// bounded by design (README.md, "Hostile clients"):
 //  - one event-driven network thread (epoll): a slow or idle client costs a socket and a few
 //    KB, never a thread;
 //  - connections capped in total and per client address; when full, a connection with no

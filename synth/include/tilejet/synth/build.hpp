@@ -1,6 +1,6 @@
 #pragma once
 
-// Offline: building a texture map from an exemplar (design.md section 2).
+// Offline: building a texture map from an exemplar (docs/design.md section 2).
 
 #include <cstdint>
 #include <functional>
@@ -14,7 +14,7 @@ namespace tilejet::synth {
 
 struct BuildParams {
     int cell_size = 0;  // 0: default, from the exemplar's grain (grain.hpp)
-    // Corner colours K (design.md section 9): the map holds K^4 cell images, one for each
+    // Corner colours K (docs/design.md section 9): the map holds K^4 cell images, one for each
     // combination of corner colours, so that no cell image, edge or corner repeats on a grid.
     // 1: a single cell image that wraps (what maps were before cell sets).
     // 2 by measurement: 16 images of 256 px cells beat 81 of 192 px on every corpus design

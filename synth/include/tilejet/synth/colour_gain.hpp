@@ -1,6 +1,6 @@
 #pragma once
 
-// Colour-regularity gain (design.md section 7): how much the tiles of a near-regular exemplar
+// Colour-regularity gain (docs/design.md section 7): how much the tiles of a near-regular exemplar
 // (bricks, mosaic stones) differ in colour from one another, turned up or down.
 
 #include <opencv2/core/mat.hpp>

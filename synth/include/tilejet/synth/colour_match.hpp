@@ -1,6 +1,6 @@
 #pragma once
 
-// Does the wall keep the exemplar's colour (design.md section 8)? Quilting favours the calm,
+// Does the wall keep the exemplar's colour (docs/design.md section 8)? Quilting favours the calm,
 // well-matching parts of an exemplar, so a synthesized wall can drift darker or greyer.
 
 #include <array>

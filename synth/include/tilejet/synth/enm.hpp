@@ -1,6 +1,6 @@
 #pragma once
 
-// Exact neighbourhood matching (design.md section 7): per-pixel synthesis in scan order that
+// Exact neighbourhood matching (docs/design.md section 7): per-pixel synthesis in scan order that
 // searches only where the exemplar continues a neighbour exactly, instead of everywhere.
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 
-// Fractional-Fourier regular-structure masks (design.md section 7): the exemplar's strongest
+// Fractional-Fourier regular-structure masks (docs/design.md section 7): the exemplar's strongest
 // periodic components, at their true (non-integer) frequencies, as a guidance channel that can
 // be evaluated at any size.
 

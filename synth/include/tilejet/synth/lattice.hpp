@@ -1,6 +1,6 @@
 #pragma once
 
-// Lattices of near-regular exemplars (design.md section 7): brick, mosaics, tiled floors and
+// Lattices of near-regular exemplars (docs/design.md section 7): brick, mosaics, tiled floors and
 // textiles repeat along two translation vectors v1, v2 (the lattice), with variation. Laid
 // brick and setts often repeat one way only: courses at a steady pitch, whose joints fall
 // anywhere along them (bricks and stones of varying length).

@@ -1,6 +1,6 @@
 #pragma once
 
-// The texture map file (design.md section 2.7): magic, format version, a section table, each
+// The texture map file (docs/design.md section 2.7): magic, format version, a section table, each
 // section zlib-compressed with its length and CRC-32, and the map id (SHA-256 of the content).
 // Loading never trusts the file: a truncated, corrupted or future-version file is a MapFileError
 // whose message names the file and what is wrong with it.

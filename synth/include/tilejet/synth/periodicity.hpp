@@ -1,6 +1,6 @@
 #pragma once
 
-// Periodicity (design.md section 8): a repeated background makes a wall look like a grid even
+// Periodicity (docs/design.md section 8): a repeated background makes a wall look like a grid even
 // where no large area repeats verbatim. Its mark is a high peak of the autocorrelation at a
 // lag of a cell's size.
 

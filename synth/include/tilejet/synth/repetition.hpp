@@ -1,6 +1,6 @@
 #pragma once
 
-// Verbatim repetition on a wall (design.md section 8): what a person notices is not that small
+// Verbatim repetition on a wall (docs/design.md section 8): what a person notices is not that small
 // pieces of the exemplar recur (every copy-based method does that) but that large areas do.
 // So repetition is a curve over window size, and a count of tile pairs sharing a large area.
 

@@ -1,6 +1,6 @@
 #pragma once
 
-// Constrained random sampling with gap filling (design.md section 7): a near-regular texture
+// Constrained random sampling with gap filling (docs/design.md section 7): a near-regular texture
 // enlarged block by block so that every copy stays on the exemplar's lattice.
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 
 // Online: the infinite texture plane of (map, seed), pixel by pixel or region by region
-// (design.md section 3). Both give exactly the same bytes, on any number of threads.
+// (docs/design.md section 3). Both give exactly the same bytes, on any number of threads.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 
-// Seams (design.md section 8): where two copied pieces meet, the colour step across the cut
+// Seams (docs/design.md section 8): where two copied pieces meet, the colour step across the cut
 // should look like any step between neighbours inside the exemplar. A visible seam is a step
 // larger than the exemplar's own.
 

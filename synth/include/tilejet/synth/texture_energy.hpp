@@ -1,6 +1,6 @@
 #pragma once
 
-// Texture energy (design.md section 8; Kwatra et al. 2005): how far the output's small
+// Texture energy (docs/design.md section 8; Kwatra et al. 2005): how far the output's small
 // neighbourhoods are from anything in the exemplar. Copy-based output is made of exemplar
 // pieces, so away from seams it is near 0; seams and foreign content raise it.
 //

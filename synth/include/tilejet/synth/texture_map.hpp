@@ -1,7 +1,7 @@
 #pragma once
 
 // The texture map: everything the online sampler needs to compute any pixel of a design's
-// infinite texture plane (design.md section 1). Built once per design by build_texture_map(),
+// infinite texture plane (docs/design.md section 1). Built once per design by build_texture_map(),
 // stored as one file by save_texture_map(), read back by load_texture_map().
 
 #include <array>
@@ -58,7 +58,7 @@ struct PatchSet {
 enum class CellType : uint8_t { A = 0, B = 1 };
 
 // An image of one cell's size with its own two patch sets. A map holds one, which wraps
-// toroidally, or a corner-coloured set (design.md section 9, cell_set.hpp): one image for each
+// toroidally, or a corner-coloured set (docs/design.md section 9, cell_set.hpp): one image for each
 // combination of its four corners' colours, any two of which meet seamlessly where their
 // shared corners agree.
 struct CellImage {

@@ -1,6 +1,6 @@
 #pragma once
 
-// Where tile k of a job lies on the texture plane (design.md section 3, "Tile regions").
+// Where tile k of a job lies on the texture plane (docs/design.md section 3.6, "Tile regions").
 
 #include <cstdint>
 #include <optional>

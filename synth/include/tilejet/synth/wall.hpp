@@ -1,6 +1,6 @@
 #pragma once
 
-// A wall of equal tiles as the quality report sees it (design.md section 8), made by tilejet
+// A wall of equal tiles as the quality report sees it (docs/design.md section 8), made by tilejet
 // or by one of the methods it is compared with: a factory canvas, the bare cell image, or
 // quilting every tile on its own.
 

@@ -1,9 +1,9 @@
 #pragma once
 
-// Convert once, copy many (design.md section 4): rendering only copies pixels of the map's cell
-// image and source, so converting those to CMYK once gives, byte for byte, what transforming
-// every rendered pixel would, at copy speed. synth::render_region on a converted map renders
-// C,M,Y,K directly.
+// Convert once, copy many (docs/design.md section 4): rendering only copies pixels of the map's
+// cell image and source, so converting those to CMYK once gives, byte for byte, what
+// transforming every rendered pixel would, at copy speed. synth::render_region on a converted
+// map renders C,M,Y,K directly.
 
 #include <memory>
 

@@ -1,6 +1,6 @@
 #pragma once
 
-// How a line turns RGB designs into ink (design.md section 4). One ColourSettings names one
+// How a line turns RGB designs into ink (docs/design.md section 4). One ColourSettings names one
 // colour pipeline; the config's [colour] section and the command line's --cmyk options fill it.
 
 #include <filesystem>
