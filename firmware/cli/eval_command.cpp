@@ -16,22 +16,22 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "quality_gates.hpp"
-#include "quality_report.hpp"
-#include "soft_proof_check.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
-#include "tilejet/synth/colour_match.hpp"
+#include "tilejet/quality/colour_match.hpp"
+#include "tilejet/quality/patch_coverage.hpp"
+#include "tilejet/quality/periodicity.hpp"
+#include "tilejet/quality/quality_gates.hpp"
+#include "tilejet/quality/quality_report.hpp"
+#include "tilejet/quality/repetition.hpp"
+#include "tilejet/quality/seam.hpp"
+#include "tilejet/quality/soft_proof_check.hpp"
+#include "tilejet/quality/texture_energy.hpp"
+#include "tilejet/quality/wall.hpp"
+#include "tilejet/quality/wall_comparison.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
-#include "tilejet/synth/patch_coverage.hpp"
-#include "tilejet/synth/periodicity.hpp"
 #include "tilejet/synth/quilt.hpp"
-#include "tilejet/synth/repetition.hpp"
-#include "tilejet/synth/seam.hpp"
-#include "tilejet/synth/texture_energy.hpp"
 #include "tilejet/synth/tile_region.hpp"
-#include "tilejet/synth/wall.hpp"
-#include "wall_comparison.hpp"
 
 namespace tilejet::cli {
 
@@ -63,7 +63,7 @@ struct Progress {
         std::fprintf(stderr, "\r\033[K  %6.1f s  %s", s, what.c_str());
         std::fflush(stderr);
     }
-    synth::MeasureProgress stage(const std::string& method) const {
+    quality::MeasureProgress stage(const std::string& method) const {
         if (!on) return {};
         return [this, method](std::string_view stage, size_t done, size_t total) {
             say(method + ": " + std::string(stage) + " " + std::to_string(done) + "/" +
@@ -77,66 +77,72 @@ struct Progress {
 
 struct Shared {
     cv::Mat exemplar;
-    std::unique_ptr<synth::TextureEnergy> energy;
-    synth::StepStats exemplar_steps;
-    synth::LabStatistics exemplar_colour;
-    synth::AutocorrelationPeak reference_peak;
+    std::unique_ptr<quality::TextureEnergy> energy;
+    quality::StepStats exemplar_steps;
+    quality::LabStatistics exemplar_colour;
+    quality::AutocorrelationPeak reference_peak;
     cv::Size periodicity_window;
     std::optional<colour::CmykTransform> production, colorimetric;
 };
 
-nlohmann::ordered_json lab_json(const synth::LabColour& c) {
+nlohmann::ordered_json lab_json(const colour::LabColour& c) {
     return {c.L, c.a, c.b};
 }
 
 // Share of tilejet's wall that shows a patch. Every tile has the same size, so it is the mean
 // of the tiles' shares; measured on the tiles' own regions of the plane, the same regions
 // tilejet_wall renders.
-double wall_patch_coverage(const synth::TextureMap& map, const synth::WallSpec& spec) {
+double wall_patch_coverage(const synth::TextureMap& map, const quality::WallSpec& spec) {
     const synth::TileGeometry geometry{spec.tile.width, spec.tile.height, synth::TileLayout::Wall,
                                        spec.columns};
     double sum = 0;
     for (int k = 0; k < spec.tiles; ++k)
-        sum += synth::patch_coverage(map, spec.seed,
-                                     synth::tile_region(spec.seed, uint64_t(k), geometry));
+        sum += quality::patch_coverage(map, spec.seed,
+                                       synth::tile_region(spec.seed, uint64_t(k), geometry));
     return sum / spec.tiles;
 }
 
 // What eval prints when done: the gates first, as the page opens, then one line per method.
-void print_summary(const ReportPage& page, const std::filesystem::path& dir) {
-    const QualityGates& g = page.gates;
-    std::printf("gates (limit %s, 1 = as good as quilting): %s\n", gate_figure(g.limit).c_str(),
-                verdict(g.pass()));
-    std::printf("  periodicity               %-8s %s\n", gate_figure(g.periodicity).c_str(),
-                verdict(g.periodicity_pass()));
+void print_summary(const quality::ReportPage& page, const std::filesystem::path& dir) {
+    const quality::QualityGates& g = page.gates;
+    std::printf("gates (limit %s, 1 = as good as quilting): %s\n",
+                quality::gate_figure(g.limit).c_str(), quality::verdict(g.pass()));
+    std::printf("  periodicity               %-8s %s\n",
+                quality::gate_figure(g.periodicity).c_str(),
+                quality::verdict(g.periodicity_pass()));
     std::printf("  texture_energy vs quilt   %-8s %s\n",
-                gate_figure(g.texture_energy_vs_quilt).c_str(), verdict(g.texture_energy_pass()));
-    std::printf("  patch coverage            %s %%\n", gate_figure(g.patch_coverage * 100).c_str());
+                quality::gate_figure(g.texture_energy_vs_quilt).c_str(),
+                quality::verdict(g.texture_energy_pass()));
+    std::printf("  patch coverage            %s %%\n",
+                quality::gate_figure(g.patch_coverage * 100).c_str());
     if (!page.side_by_side.empty())
         std::printf("walls side by side: %s\n", (dir / "walls-side-by-side.png").c_str());
     std::printf("%-8s %11s %14s %12s %18s %10s\n", "method", "periodicity", "texture_energy",
                 "repeat_scale", "tile_pairs_sharing", "colour dE");
-    for (const MethodSection& m : page.methods) {
+    for (const quality::MethodSection& m : page.methods) {
         const auto& j = m.metrics;
         const std::optional<double> periodicity =
             j["periodicity"].is_number() ? std::optional(j["periodicity"].get<double>())
                                          : std::nullopt;
-        std::printf(
-            "%-8s %11s %14s %12d %18s %10s\n", m.name.c_str(), gate_figure(periodicity).c_str(),
-            gate_figure(j["texture_energy"].get<double>()).c_str(), j["repeat_scale"].get<int>(),
-            gate_figure(j["tile_pairs_sharing"].get<double>()).c_str(),
-            gate_figure(j["colour"]["mean_delta_e2000"].get<double>()).c_str());
+        std::printf("%-8s %11s %14s %12d %18s %10s\n", m.name.c_str(),
+                    quality::gate_figure(periodicity).c_str(),
+                    quality::gate_figure(j["texture_energy"].get<double>()).c_str(),
+                    j["repeat_scale"].get<int>(),
+                    quality::gate_figure(j["tile_pairs_sharing"].get<double>()).c_str(),
+                    quality::gate_figure(j["colour"]["mean_delta_e2000"].get<double>()).c_str());
     }
 }
 
-MethodSection measure(const std::string& name, const std::string& description,
-                      const synth::Wall& wall, const Shared& shared, const EvalOptions& o,
-                      const std::filesystem::path& dir, const Progress& progress) {
-    MethodSection section{name, description, {}, {}, false};
+quality::MethodSection measure(const std::string& name, const std::string& description,
+                               const quality::Wall& wall, const Shared& shared,
+                               const EvalOptions& o, const std::filesystem::path& dir,
+                               const Progress& progress) {
+    quality::MethodSection section{name, description, {}, {}, false};
     nlohmann::ordered_json& j = section.metrics;
-    const synth::Repetition rep = synth::measure_repetition(wall, o.threads, progress.stage(name));
+    const quality::Repetition rep =
+        quality::measure_repetition(wall, o.threads, progress.stage(name));
     nlohmann::ordered_json curve = nlohmann::ordered_json::object();
-    for (const synth::RepeatPoint& p : rep.curve)
+    for (const quality::RepeatPoint& p : rep.curve)
         curve[std::to_string(p.size)] = p.share;
     j["repeat_curve"] = curve;
     j["repeat_scale"] = rep.scale;
@@ -144,7 +150,7 @@ MethodSection measure(const std::string& name, const std::string& description,
     j["shared_window"] = {rep.shared_window.width, rep.shared_window.height};
 
     progress.say(name + ": periodicity");
-    const synth::AutocorrelationPeak peak = synth::autocorrelation_peak(
+    const quality::AutocorrelationPeak peak = quality::autocorrelation_peak(
         wall.laid(cv::Rect(cv::Point(0, 0), shared.periodicity_window)));
     if (shared.reference_peak.value > 0)
         j["periodicity"] = peak.value / shared.reference_peak.value;
@@ -166,14 +172,14 @@ MethodSection measure(const std::string& name, const std::string& description,
         stretch.push_back(wall.tiles[stretch.size()]);
         indexed += double(stretch.back().total());
     }
-    const double completeness =
-        synth::TextureEnergy(stretch, o.threads).measure({shared.exemplar}, kEnergySamples, o.seed);
+    const double completeness = quality::TextureEnergy(stretch, o.threads)
+                                    .measure({shared.exemplar}, kEnergySamples, o.seed);
     j["texture_energy"] = (coherence + completeness) / 2;
     j["texture_coherence"] = coherence;
     j["texture_completeness"] = completeness;
 
     progress.say(name + ": seams");
-    const synth::SeamStats seams = synth::measure_seams(wall, shared.exemplar_steps, o.threads);
+    const quality::SeamStats seams = quality::measure_seams(wall, shared.exemplar_steps, o.threads);
     if (seams.known)
         j["seam"] = {{"mean", seams.mean_ratio},
                      {"p99", seams.p99_ratio},
@@ -185,22 +191,24 @@ MethodSection measure(const std::string& name, const std::string& description,
     section.has_seam_picture = seams.known;
 
     progress.say(name + ": colour");
-    section.colour = synth::lab_statistics(wall.tiles, o.threads);
-    const synth::ColourMatch colour = synth::compare_colour(shared.exemplar_colour, section.colour);
+    section.colour = quality::lab_statistics(wall.tiles, o.threads);
+    const quality::ColourMatch colour =
+        quality::compare_colour(shared.exemplar_colour, section.colour);
     j["colour"] = {{"mean_delta_e2000", colour.mean_delta_e2000},
                    {"histogram_distance", colour.histogram_distance},
                    {"exemplar_mean_lab", lab_json(colour.exemplar_mean)},
                    {"wall_mean_lab", lab_json(colour.wall_mean)}};
     if (shared.production) {
         progress.say(name + ": soft proof");
-        const SoftProofFigures f = check_soft_proof(wall, *shared.production, *shared.colorimetric);
+        const quality::SoftProofFigures f =
+            quality::check_soft_proof(wall, *shared.production, *shared.colorimetric);
         j["colour"]["out_of_gamut_share"] = f.out_of_gamut_share;
         j["colour"]["soft_proof_delta_e2000"] = f.proof_delta_e2000_mean;
         j["colour"]["soft_proof_delta_e2000_p95"] = f.proof_delta_e2000_p95;
     }
 
     progress.say(name + ": pictures");
-    write_wall_pictures(wall, rep, dir, name);
+    quality::write_wall_pictures(wall, rep, dir, name);
     return section;
 }
 
@@ -232,7 +240,7 @@ void run_eval(const EvalOptions& o) {
             ? o.quilt_block
             : synth::quilt_block_for_cell(std::min(shared.exemplar.cols, shared.exemplar.rows));
 
-    synth::WallSpec spec{o.tiles, {tile.width, tile.height}, o.columns, o.seed, o.threads};
+    quality::WallSpec spec{o.tiles, {tile.width, tile.height}, o.columns, o.seed, o.threads};
     if (spec.columns <= 0) spec.columns = int(std::ceil(std::sqrt(double(o.tiles))));
     const int rows = (o.tiles + spec.columns - 1) / spec.columns;
     const int periodicity_side =
@@ -241,43 +249,43 @@ void run_eval(const EvalOptions& o) {
                                  std::min(periodicity_side, rows * tile.height)};
 
     progress.say("exemplar: patch index, statistics, periodicity reference");
-    shared.energy = std::make_unique<synth::TextureEnergy>(shared.exemplar, o.threads);
-    shared.exemplar_steps = synth::neighbour_steps(shared.exemplar);
-    shared.exemplar_colour = synth::lab_statistics({shared.exemplar}, o.threads);
-    shared.reference_peak = synth::autocorrelation_peak(
+    shared.energy = std::make_unique<quality::TextureEnergy>(shared.exemplar, o.threads);
+    shared.exemplar_steps = quality::neighbour_steps(shared.exemplar);
+    shared.exemplar_colour = quality::lab_statistics({shared.exemplar}, o.threads);
+    shared.reference_peak = quality::autocorrelation_peak(
         synth::quilt_texture(shared.exemplar, shared.periodicity_window, o.seed ^ 0x9e71ull, block)
             .rgb);
-    write_rgb_png(shared.exemplar, dir / "exemplar.png");
+    quality::write_rgb_png(shared.exemplar, dir / "exemplar.png");
 
     const cv::Size canvas(int(std::lround(kCanvasMillimetres / o.tile_mm * tile.width)),
                           int(std::lround(kCanvasMillimetres / o.tile_mm * tile.width)));
-    ReportPage page;
-    page.window_sizes = synth::repeat_window_sizes({tile.width, tile.height});
+    quality::ReportPage page;
+    page.window_sizes = quality::repeat_window_sizes({tile.width, tile.height});
     page.exemplar_colour = shared.exemplar_colour;
-    std::vector<NamedPicture> corners;  // tilejet, canvas, quilt: the walls side by side
+    std::vector<quality::NamedPicture> corners;  // tilejet, canvas, quilt: the walls side by side
     auto run = [&](const std::string& name, const std::string& what, auto make) {
         progress.say(name + ": making the wall");
-        const synth::Wall wall = make();
+        const quality::Wall wall = make();
         page.methods.push_back(measure(name, what, wall, shared, o, dir, progress));
-        if (name != "cell") corners.push_back({name, wall_corner(wall)});
+        if (name != "cell") corners.push_back({name, quality::wall_corner(wall)});
     };
     run("tilejet",
         "tilejet: tiles 0.." + std::to_string(o.tiles - 1) + " of job seed " +
             std::to_string(o.seed) + " in the wall layout, " + std::to_string(spec.columns) +
             " tiles wide.",
-        [&] { return synth::tilejet_wall(map, spec); });
+        [&] { return quality::tilejet_wall(map, spec); });
     run("canvas",
         "canvas: one " + std::to_string(canvas.width) + "x" + std::to_string(canvas.height) +
             " px canvas (2 m x 2 m at " + std::to_string(int(o.tile_mm)) +
             " mm per tile width) quilted once from the exemplar, every tile cropped from it at a "
             "random position.",
-        [&] { return synth::canvas_wall(shared.exemplar, spec, canvas, block); });
+        [&] { return quality::canvas_wall(shared.exemplar, spec, canvas, block); });
     run("cell", "cell: the map's cell image repeated over the same tile regions, no patches.",
-        [&] { return synth::cell_wall(map, spec); });
+        [&] { return quality::cell_wall(map, spec); });
     run("quilt", "quilt: every tile quilted on its own from the exemplar (the offline reference).",
-        [&] { return synth::quilt_wall(shared.exemplar, spec, block); });
+        [&] { return quality::quilt_wall(shared.exemplar, spec, block); });
     auto section = [&](const std::string& name) -> nlohmann::ordered_json& {
-        for (MethodSection& m : page.methods)
+        for (quality::MethodSection& m : page.methods)
             if (m.name == name) return m.metrics;
         throw std::logic_error("no " + name + " wall in the report");
     };
@@ -291,17 +299,17 @@ void run_eval(const EvalOptions& o) {
             first[key] = value;
         tilejet = first;
     }
-    page.gates = quality_gates(section("tilejet"), section("quilt"), coverage);
+    page.gates = quality::quality_gates(section("tilejet"), section("quilt"), coverage);
     progress.say("walls side by side");
-    page.side_by_side_scale = write_walls_side_by_side(corners, dir);
-    for (const NamedPicture& c : corners)
+    page.side_by_side_scale = quality::write_walls_side_by_side(corners, dir);
+    for (const quality::NamedPicture& c : corners)
         page.side_by_side.push_back(c.name);
     progress.done();
 
     // metrics.json opens with the gates, as the page does; then every method's figures.
     nlohmann::ordered_json metrics;
-    metrics["gates"] = gates_json(page.gates);
-    for (const MethodSection& m : page.methods)
+    metrics["gates"] = quality::gates_json(page.gates);
+    for (const quality::MethodSection& m : page.methods)
         metrics[m.name] = m.metrics;
     {
         const std::filesystem::path path = dir / "metrics.json";
@@ -343,7 +351,7 @@ void run_eval(const EvalOptions& o) {
                              ": out of gamut = relative colorimetric "
                              "round trip moves the colour by more than CIEDE2000 3; soft proof "
                              "with perceptual intent, 300% ink limit");
-    write_report_page(page, dir);
+    quality::write_report_page(page, dir);
     print_summary(page, dir);
     std::printf("wrote %s/index.html and metrics.json\n", dir.string().c_str());
 }

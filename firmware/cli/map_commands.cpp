@@ -11,10 +11,10 @@
 
 #include "commands.hpp"
 #include "tilejet/drivers/config_section.hpp"
+#include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
-#include "tilejet/synth/patch_coverage.hpp"
 
 namespace tilejet::cli {
 
@@ -134,7 +134,7 @@ void run_info(const std::string& path) {
     } else {
         j["dpi"] = nullptr;
     }
-    j["patch_coverage"] = synth::patch_coverage(map, kCoverageSeed, kCoverageRegion);
+    j["patch_coverage"] = quality::patch_coverage(map, kCoverageSeed, kCoverageRegion);
     j["build"] = {{"seed", map.build.seed},
                   {"exemplar_width", map.build.exemplar_width},
                   {"exemplar_height", map.build.exemplar_height},

@@ -1,9 +1,9 @@
-#include "active_set.hpp"
+#include "tilejet/synth/internal/active_set.hpp"
 
 #include <algorithm>
 #include <bit>
 
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 

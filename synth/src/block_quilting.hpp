@@ -7,7 +7,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "lattice_alignment.hpp"
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 

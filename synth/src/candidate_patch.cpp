@@ -5,7 +5,7 @@
 #include <opencv2/imgproc/detail/gcgraph.hpp>
 #include <vector>
 
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 

@@ -5,8 +5,8 @@
 #include <opencv2/core/mat.hpp>
 #include <optional>
 
-#include "diamond.hpp"
 #include "lattice_alignment.hpp"
+#include "tilejet/synth/internal/diamond.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::synth::detail {

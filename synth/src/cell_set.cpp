@@ -4,11 +4,11 @@
 #include <opencv2/imgproc.hpp>
 
 #include "graph_cut.hpp"
-#include "lab.hpp"
-#include "mix64.hpp"
 #include "offset_matching.hpp"
-#include "parallel_for.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/lab.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
+#include "tilejet/synth/internal/parallel_for.hpp"
 
 namespace tilejet::synth::detail {
 

@@ -5,8 +5,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mix64.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth {
 

@@ -1,4 +1,4 @@
-#include "lab.hpp"
+#include "tilejet/synth/internal/lab.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -3,7 +3,7 @@
 #include <opencv2/core/types.hpp>
 #include <optional>
 
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 #include "tilejet/synth/lattice.hpp"
 
 namespace tilejet::synth::detail {

@@ -15,7 +15,7 @@
 #include <fstream>
 #include <map>
 
-#include "diamond.hpp"
+#include "tilejet/synth/internal/diamond.hpp"
 
 namespace tilejet::synth {
 

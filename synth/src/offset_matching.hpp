@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "lattice_alignment.hpp"
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 

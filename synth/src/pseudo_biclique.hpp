@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 
 #include "block_quilting.hpp"
-#include "lab.hpp"
-#include "mix64.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/lab.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth {
 

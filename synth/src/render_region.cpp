@@ -4,11 +4,11 @@
 #include <thread>
 #include <vector>
 
-#include "corner_colours.hpp"
-#include "diamond.hpp"
-#include "plane_limits.hpp"
-#include "shown_patches.hpp"
 #include "stream_copy.hpp"
+#include "tilejet/synth/internal/corner_colours.hpp"
+#include "tilejet/synth/internal/diamond.hpp"
+#include "tilejet/synth/internal/plane_limits.hpp"
+#include "tilejet/synth/internal/shown_patches.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::synth {

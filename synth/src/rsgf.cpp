@@ -4,10 +4,10 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "lab.hpp"
 #include "lattice_alignment.hpp"
-#include "mix64.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/lab.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth {
 

@@ -1,9 +1,9 @@
 #include "tilejet/synth/sampler.hpp"
 
-#include "active_set.hpp"
-#include "corner_colours.hpp"
-#include "diamond.hpp"
-#include "plane_limits.hpp"
+#include "tilejet/synth/internal/active_set.hpp"
+#include "tilejet/synth/internal/corner_colours.hpp"
+#include "tilejet/synth/internal/diamond.hpp"
+#include "tilejet/synth/internal/plane_limits.hpp"
 
 namespace tilejet::synth {
 

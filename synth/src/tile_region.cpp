@@ -1,6 +1,6 @@
 #include "tilejet/synth/tile_region.hpp"
 
-#include "mix64.hpp"
+#include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth {
 

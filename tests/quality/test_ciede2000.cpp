@@ -1,34 +1,37 @@
 #include <catch2/catch.hpp>
 
-#include "tilejet/synth/colour_match.hpp"
+#include "tilejet/quality/colour_match.hpp"
 #include "walls.hpp"
 
 using namespace tilejet;
 
 // Pairs and expected differences from Sharma, Wu and Dalal (2005), table 1.
 TEST_CASE("CIEDE2000 matches the published test data", "[quality]") {
-    CHECK(synth::ciede2000({50, 2.6772, -79.7751}, {50, 0, -82.7485}) ==
+    CHECK(colour::ciede2000({50, 2.6772, -79.7751}, {50, 0, -82.7485}) ==
           Approx(2.0425).margin(1e-4));
-    CHECK(synth::ciede2000({50, 0, 0}, {50, -1, 2}) == Approx(2.3669).margin(1e-4));
-    CHECK(synth::ciede2000({50, 2.5, 0}, {73, 25, -18}) == Approx(27.1492).margin(1e-4));
-    CHECK(synth::ciede2000({60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}) ==
+    CHECK(colour::ciede2000({50, 0, 0}, {50, -1, 2}) == Approx(2.3669).margin(1e-4));
+    CHECK(colour::ciede2000({50, 2.5, 0}, {73, 25, -18}) == Approx(27.1492).margin(1e-4));
+    CHECK(colour::ciede2000({60.2574, -34.0099, 36.2677}, {60.4626, -34.1751, 39.4387}) ==
           Approx(1.2644).margin(1e-4));
     // The pairs that test the mean hue across 0°/360° (Sharma's 9, 11 and 13), where
     // implementations go wrong.
-    CHECK(synth::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0009}) == Approx(7.1792).margin(1e-4));
-    CHECK(synth::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0011}) == Approx(7.2195).margin(1e-4));
-    CHECK(synth::ciede2000({50, -0.001, 2.49}, {50, 0.0009, -2.49}) == Approx(4.8045).margin(1e-4));
-    CHECK(synth::ciede2000({50, 10, 10}, {50, 10, 10}) == 0);
+    CHECK(colour::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0009}) ==
+          Approx(7.1792).margin(1e-4));
+    CHECK(colour::ciede2000({50, 2.49, -0.001}, {50, -2.49, 0.0011}) ==
+          Approx(7.2195).margin(1e-4));
+    CHECK(colour::ciede2000({50, -0.001, 2.49}, {50, 0.0009, -2.49}) ==
+          Approx(4.8045).margin(1e-4));
+    CHECK(colour::ciede2000({50, 10, 10}, {50, 10, 10}) == 0);
 }
 
 TEST_CASE("colour match: same pixels give 0, a shifted wall does not", "[quality]") {
     const cv::Mat a = test::noise_image({64, 64}, 5);
-    const auto ex = synth::lab_statistics({a});
-    const auto same = synth::compare_colour(ex, synth::lab_statistics({a.clone(), a.clone()}));
+    const auto ex = quality::lab_statistics({a});
+    const auto same = quality::compare_colour(ex, quality::lab_statistics({a.clone(), a.clone()}));
     CHECK(same.mean_delta_e2000 == Approx(0).margin(1e-9));
     CHECK(same.histogram_distance == Approx(0).margin(1e-6));
     cv::Mat dark = a * 0.5;
-    const auto shifted = synth::compare_colour(ex, synth::lab_statistics({dark}));
+    const auto shifted = quality::compare_colour(ex, quality::lab_statistics({dark}));
     CHECK(shifted.mean_delta_e2000 > 10);
     CHECK(shifted.histogram_distance > 0.2);
 }

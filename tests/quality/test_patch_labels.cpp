@@ -4,10 +4,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "../synth/fixtures.hpp"
-#include "tilejet/synth/patch_labels.hpp"
+#include "tilejet/quality/patch_labels.hpp"
+#include "tilejet/quality/wall.hpp"
 #include "tilejet/synth/quilt.hpp"
 #include "tilejet/synth/sampler.hpp"
-#include "tilejet/synth/wall.hpp"
 
 using namespace tilejet;
 
@@ -17,7 +17,7 @@ TEST_CASE("patch labels agree with render_region", "[quality]") {
     for (const synth::Region region :
          {synth::Region{-70, 33, 300, 200}, synth::Region{(int64_t(1) << 31) - 300, -5, 300, 90}}) {
         const cv::Mat rgb = synth::render_region(map, 9, region, 2);
-        const cv::Mat labels = synth::render_patch_labels(map, 9, region);
+        const cv::Mat labels = quality::render_patch_labels(map, 9, region);
         REQUIRE(labels.size() == rgb.size());
         size_t labelled = 0;
         std::map<int32_t, size_t> pixels_of;
@@ -48,7 +48,7 @@ TEST_CASE("labels change exactly where render_region switches between cell image
     const cv::Mat& cell = map.cell_images.front().rgb;
     const synth::Region region{1000, -2000, 256, 256};
     const cv::Mat rgb = synth::render_region(map, 4, region, 1);
-    const cv::Mat labels = synth::render_patch_labels(map, 4, region);
+    const cv::Mat labels = quality::render_patch_labels(map, 4, region);
     size_t differs = 0, differs_labelled = 0;
     for (int y = 0; y < rgb.rows; ++y)
         for (int x = 0; x < rgb.cols; ++x) {
@@ -75,7 +75,7 @@ TEST_CASE("quilting provenance names the exemplar pixel of every output pixel", 
         }
     CHECK(mismatches == 0);
     // Seams between blocks exist, but most neighbours are copied together.
-    const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
+    const cv::Mat seams = quality::seams_from_provenance(q.provenance, exemplar.cols);
     const double share = double(cv::countNonZero(seams)) / double(seams.total());
     CHECK(share > 0.005);
     CHECK(share < 0.3);
@@ -102,7 +102,7 @@ TEST_CASE("quilting provenance names pixels past 2^24 of a slab-sized exemplar",
     }
     REQUIRE(largest >= (1 << 24));
     CHECK(largest < std::int32_t(exemplar.total()));
-    const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
+    const cv::Mat seams = quality::seams_from_provenance(q.provenance, exemplar.cols);
     CHECK(double(cv::countNonZero(seams)) / double(seams.total()) < 0.3);
 }
 
@@ -114,6 +114,6 @@ TEST_CASE("quilting with blocks larger than the search window looks in a larger 
     cv::resize(noise, exemplar, {2400, 2400}, 0, 0, cv::INTER_CUBIC);
     const synth::QuiltedImage q = synth::quilt_texture(exemplar, {1800, 1800}, 2, 1100);
     REQUIRE(q.rgb.size() == cv::Size(1800, 1800));
-    const cv::Mat seams = synth::seams_from_provenance(q.provenance, exemplar.cols);
+    const cv::Mat seams = quality::seams_from_provenance(q.provenance, exemplar.cols);
     CHECK(double(cv::countNonZero(seams)) / double(seams.total()) < 0.05);
 }

@@ -2,19 +2,19 @@
 #include <opencv2/core.hpp>
 
 #include "../synth/fixtures.hpp"
-#include "tilejet/synth/periodicity.hpp"
+#include "tilejet/quality/periodicity.hpp"
+#include "tilejet/quality/wall.hpp"
 #include "tilejet/synth/quilt.hpp"
-#include "tilejet/synth/wall.hpp"
 #include "walls.hpp"
 
 using namespace tilejet;
 
 TEST_CASE("a repeated cell image is far more periodic than the exemplar's own look", "[quality]") {
     const synth::TextureMap& map = test::small_map();  // 64 px cells
-    const synth::Wall cells = synth::cell_wall(map, {4, {128, 128}, 2, 5, 2});
-    const synth::AutocorrelationPeak wall =
-        synth::autocorrelation_peak(cells.laid({0, 0, 256, 256}));
-    const synth::AutocorrelationPeak own = synth::autocorrelation_peak(
+    const quality::Wall cells = quality::cell_wall(map, {4, {128, 128}, 2, 5, 2});
+    const quality::AutocorrelationPeak wall =
+        quality::autocorrelation_peak(cells.laid({0, 0, 256, 256}));
+    const quality::AutocorrelationPeak own = quality::autocorrelation_peak(
         synth::quilt_texture(test::demo_exemplar(), {256, 256}, 3, 32).rgb);
     // The cell image repeats exactly every 64 px: correlation 1 at a multiple of the cell.
     CHECK(wall.value > 0.999);
@@ -25,8 +25,8 @@ TEST_CASE("a repeated cell image is far more periodic than the exemplar's own lo
 }
 
 TEST_CASE("white noise has no period", "[quality]") {
-    const synth::AutocorrelationPeak p =
-        synth::autocorrelation_peak(test::noise_image({200, 160}, 9));
+    const quality::AutocorrelationPeak p =
+        quality::autocorrelation_peak(test::noise_image({200, 160}, 9));
     CHECK(p.value < 0.1);
 }
 
@@ -34,7 +34,7 @@ TEST_CASE("a period of 40 px is found at lag 40", "[quality]") {
     const cv::Mat base = test::noise_image({40, 40}, 4);
     cv::Mat image;
     cv::repeat(base, 5, 5, image);  // 200 x 200, period 40 both ways
-    const synth::AutocorrelationPeak p = synth::autocorrelation_peak(image);
+    const quality::AutocorrelationPeak p = quality::autocorrelation_peak(image);
     CHECK(p.value > 0.999);
     CHECK(std::abs(p.lag.x) % 40 == 0);
     CHECK(std::abs(p.lag.y) % 40 == 0);

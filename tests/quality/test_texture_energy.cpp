@@ -2,14 +2,14 @@
 #include <opencv2/core.hpp>
 
 #include "../synth/fixtures.hpp"
-#include "tilejet/synth/texture_energy.hpp"
+#include "tilejet/quality/texture_energy.hpp"
 #include "walls.hpp"
 
 using namespace tilejet;
 
 TEST_CASE("texture energy: an exemplar crop is near 0, an unrelated image is high", "[quality]") {
     const cv::Mat& exemplar = test::demo_exemplar();
-    const synth::TextureEnergy energy(exemplar, 2);
+    const quality::TextureEnergy energy(exemplar, 2);
     // Every 8x8 patch of a crop is an exemplar patch: distance 0 when the search finds it.
     const double crop = energy.measure({exemplar(cv::Rect(13, 29, 150, 120)).clone()}, 5000, 1);
     CHECK(crop < 0.5);
@@ -32,10 +32,10 @@ TEST_CASE("texture completeness: a wall that repeats one corner of the exemplar 
     cv::repeat(exemplar(cv::Rect(0, 0, 64, 64)), 2 * exemplar.rows / 64, 2 * exemplar.cols / 64,
                corner);
     const auto completeness = [&](const cv::Mat& wall) {
-        return synth::TextureEnergy(std::vector<cv::Mat>{wall}, 2, wall.total())
+        return quality::TextureEnergy(std::vector<cv::Mat>{wall}, 2, wall.total())
             .measure({exemplar}, 5000, 1);
     };
-    const synth::TextureEnergy coherence(exemplar, 2);
+    const quality::TextureEnergy coherence(exemplar, 2);
     // One way, the corner's wall is nearly as good as the whole exemplar's (only the joins
     // between its copies are not in the exemplar) ...
     const double corner_coherence = coherence.measure({corner}, 5000, 1);
@@ -50,11 +50,11 @@ TEST_CASE("texture energy: several images index as one", "[quality]") {
     const cv::Mat left = exemplar(cv::Rect(0, 0, exemplar.cols / 2, exemplar.rows)).clone();
     const cv::Mat right =
         exemplar(cv::Rect(exemplar.cols / 2, 0, exemplar.cols / 2, exemplar.rows)).clone();
-    const synth::TextureEnergy halves(std::vector<cv::Mat>{left, right}, 2);
-    const synth::TextureEnergy only_left(left, 2);
+    const quality::TextureEnergy halves(std::vector<cv::Mat>{left, right}, 2);
+    const quality::TextureEnergy only_left(left, 2);
     const cv::Mat from_right = right(cv::Rect(20, 20, 80, 80)).clone();
     CHECK(halves.measure({from_right}, 3000, 1) < 0.5);
     CHECK(only_left.measure({from_right}, 3000, 1) > 1);
-    CHECK_THROWS_WITH(synth::TextureEnergy(std::vector<cv::Mat>{}, 1),
+    CHECK_THROWS_WITH(quality::TextureEnergy(std::vector<cv::Mat>{}, 1),
                       Catch::Contains("needs an image"));
 }

@@ -4,7 +4,7 @@
 #include <opencv2/core/mat.hpp>
 #include <random>
 
-#include "tilejet/synth/wall.hpp"
+#include "tilejet/quality/wall.hpp"
 
 namespace tilejet::test {
 
@@ -18,8 +18,8 @@ inline cv::Mat noise_image(cv::Size size, uint32_t seed) {
     return m;
 }
 
-inline synth::Wall wall_of(std::vector<cv::Mat> tiles, int columns) {
-    synth::Wall w;
+inline quality::Wall wall_of(std::vector<cv::Mat> tiles, int columns) {
+    quality::Wall w;
     w.tile = tiles.front().size();
     w.columns = columns;
     w.tiles = std::move(tiles);

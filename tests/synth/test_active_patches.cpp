@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 #include <random>
 
-#include "active_set.hpp"
 #include "fixtures.hpp"
+#include "tilejet/synth/internal/active_set.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 using namespace tilejet::synth;

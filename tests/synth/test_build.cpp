@@ -3,9 +3,9 @@
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "diamond.hpp"
 #include "fixtures.hpp"
 #include "tilejet/synth/build.hpp"
+#include "tilejet/synth/internal/diamond.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 using namespace tilejet::synth;

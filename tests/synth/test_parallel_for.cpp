@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "parallel_for.hpp"
+#include "tilejet/synth/internal/parallel_for.hpp"
 
 using tilejet::synth::detail::parallel_for;
 

@@ -1,9 +1,9 @@
 #include "tilejet/colour/profile_report.hpp"
 
 #include "icc_profile.hpp"
+#include "tilejet/colour/ciede2000.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
-#include "tilejet/synth/colour_match.hpp"
-#include "tilejet/synth/statistics.hpp"
+#include "tilejet/colour/statistics.hpp"
 
 namespace tilejet::colour {
 
@@ -26,10 +26,9 @@ ProfileReport check_profile(const std::filesystem::path& profile,
         const double ink[4] = {m.c, m.m, m.y, m.k};  // percent, as TYPE_CMYK_DBL takes
         cmsCIELab predicted;
         cmsDoTransform(predict.get(), ink, &predicted, 1);
-        errors.push_back(
-            synth::ciede2000({m.L, m.a, m.b}, {predicted.L, predicted.a, predicted.b}));
+        errors.push_back(ciede2000({m.L, m.a, m.b}, {predicted.L, predicted.a, predicted.b}));
     }
-    const synth::Summary s = synth::summarize(errors, 0.95);
+    const Summary s = summarize(errors, 0.95);
     ProfileReport report;
     report.patches = s.count;
     report.mean = s.mean, report.p95 = s.percentile, report.max = s.max;

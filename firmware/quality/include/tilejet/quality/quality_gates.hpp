@@ -1,0 +1,50 @@
+#pragma once
+
+// The quality report's two gates (issue 16, point 5): a wall must not look like a grid
+// (periodicity against the quilted reference) and must look like the exemplar as closely as
+// quilting does (texture energy against the quilt baseline). The report opens with them because
+// they are what decides whether a design is fit to print; every other figure explains them.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+namespace tilejet::quality {
+
+// Both figures are ratios to quilting, so one limit serves both: 20 % worse than the offline
+// reference is what the issue allows.
+inline constexpr double kGateLimit = 1.2;
+
+struct QualityGates {
+    double limit = kGateLimit;
+    // tilejet's periodicity (already relative to the exemplar quilted to the same size); empty
+    // when the quilted reference has no autocorrelation peak to compare with.
+    std::optional<double> periodicity;
+    // tilejet's texture energy divided by the quilt baseline's; empty if quilt's is zero.
+    std::optional<double> texture_energy_vs_quilt;
+    // Share of tilejet's wall covered by shown patches: not a gate, but what the gates depend
+    // on most (whatever no patch covers repeats with the cell lattice).
+    double patch_coverage = 0;
+
+    // A figure that could not be measured does not pass: the report cannot vouch for it.
+    bool periodicity_pass() const { return periodicity && *periodicity <= limit; }
+    bool texture_energy_pass() const {
+        return texture_energy_vs_quilt && *texture_energy_vs_quilt <= limit;
+    }
+    bool pass() const { return periodicity_pass() && texture_energy_pass(); }
+};
+
+// From the metrics.json sections of tilejet and of the quilt baseline (see eval_command.cpp).
+QualityGates quality_gates(const nlohmann::ordered_json& tilejet,
+                           const nlohmann::ordered_json& quilt, double patch_coverage);
+
+// metrics.json's "gates" object.
+nlohmann::ordered_json gates_json(const QualityGates& gates);
+
+// "PASS" or "FAIL".
+const char* verdict(bool pass);
+
+// A figure with three significant digits, or "n/a".
+std::string gate_figure(const std::optional<double>& v);
+
+}  // namespace tilejet::quality

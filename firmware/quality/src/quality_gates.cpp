@@ -1,0 +1,46 @@
+#include "tilejet/quality/quality_gates.hpp"
+
+#include <sstream>
+
+namespace tilejet::quality {
+
+QualityGates quality_gates(const nlohmann::ordered_json& tilejet,
+                           const nlohmann::ordered_json& quilt, double patch_coverage) {
+    QualityGates g;
+    if (tilejet.contains("periodicity") && tilejet["periodicity"].is_number())
+        g.periodicity = tilejet["periodicity"].get<double>();
+    const double own = tilejet.value("texture_energy", 0.0);
+    const double reference = quilt.value("texture_energy", 0.0);
+    if (reference > 0) g.texture_energy_vs_quilt = own / reference;
+    g.patch_coverage = patch_coverage;
+    return g;
+}
+
+nlohmann::ordered_json gates_json(const QualityGates& g) {
+    auto value = [](const std::optional<double>& v) {
+        return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json();
+    };
+    nlohmann::ordered_json j;
+    j["periodicity"] = value(g.periodicity);
+    j["periodicity_pass"] = g.periodicity_pass();
+    j["texture_energy_vs_quilt"] = value(g.texture_energy_vs_quilt);
+    j["texture_energy_pass"] = g.texture_energy_pass();
+    j["pass"] = g.pass();
+    j["limit"] = g.limit;
+    j["patch_coverage"] = g.patch_coverage;
+    return j;
+}
+
+const char* verdict(bool pass) {
+    return pass ? "PASS" : "FAIL";
+}
+
+std::string gate_figure(const std::optional<double>& v) {
+    if (!v) return "n/a";
+    std::ostringstream s;
+    s.precision(3);
+    s << *v;
+    return s.str();
+}
+
+}  // namespace tilejet::quality
