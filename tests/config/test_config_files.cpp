@@ -63,7 +63,7 @@ TEST_CASE("a value of the wrong type or out of range names section, key and line
                         Equals(path + ":6: [modbus] enabled: expected true or false, got string"));
 }
 
-TEST_CASE("absent keys take their defaults; a required one names the file and section",
+TEST_CASE("absent keys take their defaults and a required one names the file and section",
           "[config]") {
     test::TempDir dir;
     const auto path = write(dir, "[print]\nspeed_mm_s = 300\n");
