@@ -1,26 +1,12 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <filesystem>
-#include <stdexcept>
 
+#include "tilejet/config/paths.hpp"
+#include "tilejet/config/toml_file.hpp"
 #include "tilejet/drivers/config_parse.hpp"
 
 namespace tilejet::drivers {
-
-namespace {
-
-const toml::table* section_table(const toml::table& root, const char* name,
-                                 const ConfigSource& source) {
-    const toml::node* node = root.get(name);
-    if (!node) return nullptr;
-    if (!node->is_table())
-        throw std::runtime_error(source.file + ":" + std::to_string(node->source().begin.line) +
-                                 ": '" + name + "' must be a [" + name + "] section");
-    return node->as_table();
-}
-
-}  // namespace
 
 std::string_view config_key(GpioInput input) {
     switch (input) {
@@ -45,8 +31,8 @@ std::string_view to_string(GpioOutput output) {
     return config_key(output);
 }
 
-LineConfig parse_line_section(const toml::table* table, const ConfigSource& source) {
-    ConfigSection s(table, source, "line");
+LineConfig parse_line_section(const toml::table* table, const config::ConfigSource& source) {
+    config::ConfigSection s(table, source, "line");
     LineConfig c;
     c.tile_length_mm = s.get_double("tile_length_mm", c.tile_length_mm, 1, 10000);
     c.tile_pitch_mm = s.get_double("tile_pitch_mm", c.tile_pitch_mm, 1, 20000);
@@ -64,8 +50,8 @@ LineConfig parse_line_section(const toml::table* table, const ConfigSource& sour
     return c;
 }
 
-ModbusConfig parse_modbus_section(const toml::table* table, const ConfigSource& source) {
-    ConfigSection s(table, source, "modbus");
+ModbusConfig parse_modbus_section(const toml::table* table, const config::ConfigSource& source) {
+    config::ConfigSection s(table, source, "modbus");
     ModbusConfig c;
     c.transport = s.get_choice("transport", c.transport, {"tcp", "rtu"});
     c.host = s.get_string("host", c.host);
@@ -85,8 +71,8 @@ ModbusConfig parse_modbus_section(const toml::table* table, const ConfigSource& 
     return c;
 }
 
-GpioConfig parse_gpio_section(const toml::table* table, const ConfigSource& source) {
-    ConfigSection s(table, source, "gpio");
+GpioConfig parse_gpio_section(const toml::table* table, const config::ConfigSource& source) {
+    config::ConfigSection s(table, source, "gpio");
     GpioConfig c;
     c.backend = s.get_choice("backend", c.backend, {"sim", "gpiod"});
     c.chip = s.get_string("chip", c.chip);
@@ -110,8 +96,8 @@ std::string sim_runtime_directory() {
     return "/tmp/tilejet-sim-" + std::to_string(::getuid());
 }
 
-SimConfig parse_sim_section(const toml::table* table, const ConfigSource& source) {
-    ConfigSection s(table, source, "sim");
+SimConfig parse_sim_section(const toml::table* table, const config::ConfigSource& source) {
+    config::ConfigSection s(table, source, "sim");
     SimConfig c;
     const auto socket = [&](const char* key, const std::string& fallback) {
         const std::string path = s.get_string(key, fallback);
@@ -128,23 +114,21 @@ SimConfig parse_sim_section(const toml::table* table, const ConfigSource& source
     return c;
 }
 
-DriversConfig parse_drivers_config(const toml::table& root, const ConfigSource& source) {
-    LineConfig line = parse_line_section(section_table(root, "line", source), source);
-    std::filesystem::path map = line.register_map;
-    if (map.is_relative()) map = std::filesystem::path(source.file).parent_path() / map;
-    RegisterMap registers = load_register_map(map.string());
+DriversConfig parse_drivers_config(const toml::table& root, const config::ConfigSource& source) {
+    LineConfig line = parse_line_section(config::find_section(root, "line", source), source);
+    RegisterMap registers = load_register_map(config::resolve_path(source, line.register_map));
     return DriversConfig{
         .file = source.file,
         .line = std::move(line),
-        .modbus = parse_modbus_section(section_table(root, "modbus", source), source),
-        .gpio = parse_gpio_section(section_table(root, "gpio", source), source),
-        .sim = parse_sim_section(section_table(root, "sim", source), source),
+        .modbus = parse_modbus_section(config::find_section(root, "modbus", source), source),
+        .gpio = parse_gpio_section(config::find_section(root, "gpio", source), source),
+        .sim = parse_sim_section(config::find_section(root, "sim", source), source),
         .registers = std::move(registers),
     };
 }
 
 DriversConfig load_drivers_config(const std::string& path) {
-    return parse_drivers_config(load_toml_file(path), ConfigSource{path});
+    return parse_drivers_config(config::load_toml_file(path), config::ConfigSource{path});
 }
 
 }  // namespace tilejet::drivers

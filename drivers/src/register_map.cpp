@@ -4,7 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "tilejet/drivers/config_section.hpp"
+#include "tilejet/config/section.hpp"
+#include "tilejet/config/toml_file.hpp"
 
 namespace tilejet::drivers {
 
@@ -39,7 +40,7 @@ std::uint32_t type_max(RegisterType t) {
     return 0;
 }
 
-Register parse_register(ConfigSection& s) {
+Register parse_register(config::ConfigSection& s) {
     Register r;
     r.name = s.require_string("name");
     r.table = s.get_choice("table", "", {"input", "holding"}) == "input" ? RegisterTable::input
@@ -133,7 +134,7 @@ int RegisterMap::span(RegisterTable table) const {
 }
 
 RegisterMap load_register_map(const std::string& path) {
-    const toml::table root = load_toml_file(path);
+    const toml::table root = config::load_toml_file(path);
     std::vector<Register> registers;
     for (const auto& [key, node] : root) {
         if (key.str() != "register")
@@ -148,8 +149,8 @@ RegisterMap load_register_map(const std::string& path) {
             if (!entry.is_table())
                 throw std::runtime_error(path + ":" + std::to_string(entry.source().begin.line) +
                                          ": each [[register]] must be a table");
-            ConfigSection section(entry.as_table(), {path},
-                                  "register #" + std::to_string(registers.size() + 1));
+            config::ConfigSection section(entry.as_table(), {path},
+                                          "register #" + std::to_string(registers.size() + 1));
             registers.push_back(parse_register(section));
         }
     }

@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "tilejet/drivers/config_section.hpp"
+#include "tilejet/config/section.hpp"
+#include "tilejet/config/toml_file.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
@@ -42,8 +43,8 @@ double print_dpi(const BuildOptions& o) {
             "map build needs the resolution the design will print at: give --dpi P, or "
             "--config FILE whose [render] dpi it takes (" +
             path + " does not exist here)");
-    const toml::table root = drivers::load_toml_file(path);
-    drivers::ConfigSection render(root["render"].as_table(), {path}, "render");
+    const toml::table root = config::load_toml_file(path);
+    config::ConfigSection render(root["render"].as_table(), {path}, "render");
     return double(render.get_int("dpi", 360, 10, 2400));
 }
 

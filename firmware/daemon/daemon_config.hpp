@@ -1,18 +1,19 @@
 #pragma once
 
-// tilejetd's config: the drivers' sections ([line], [modbus], [gpio], [sim]) plus the daemon's
-// own, each read by one parse function and used by one part of the daemon:
-//   [colour]   ColourSettings for every job's CMYK transform (tile_renderer)
+// tilejetd's config: each module parses its own sections and the daemon composes them:
+//   [line] [modbus] [gpio] [sim]  the line drivers (drivers/config_parse.hpp)
+//   [colour]   ColourSettings for every job's CMYK transform (colour/colour_config.hpp)
+//   [api]      the HTTP API's and panel's address, sessions, sign-in limits (api/api_config.hpp)
+//   [[users]]  who may sign in, with which role and password hash (api/api_config.hpp)
+// and the daemon's own:
 //   [storage]  job store and previews (jobs/, tile_renderer)
-//   [api]      the HTTP API's and panel's address, sessions, sign-in limits (api/)
-//   [[users]]  who may sign in, with which role and password hash (api/)
 //   [render]   render-ahead pool and the default resolution (render_ahead)
 //   [print]    conveyor speeds and the print loop's timing (print_loop)
 // An unknown section or key stops the daemon with file, section, key and line.
 #include <chrono>
 #include <string>
 
-#include "tilejet/api/access.hpp"
+#include "tilejet/api/api_config.hpp"
 #include "tilejet/colour/colour_settings.hpp"
 #include "tilejet/drivers/config.hpp"
 
@@ -24,12 +25,6 @@ struct StorageConfig {
     int preview_tiles = 8;  // sRGB proofs of each job's first tiles
     std::string designs;    // texture maps (*.tjmap) the panel offers; engineers upload here
     std::string profiles;   // CMYK output profiles (*.icc) the panel offers
-};
-
-struct ApiConfig {
-    std::string host = "127.0.0.1";
-    int port = 8470;             // 0: the kernel picks (tests); the daemon logs the port it got
-    api::AccessSettings access;  // users from [[users]], the rest from [api]
 };
 
 struct RenderConfig {
@@ -53,7 +48,7 @@ struct DaemonConfig {
     drivers::DriversConfig drivers;
     colour::ColourSettings colour;
     StorageConfig storage;
-    ApiConfig api;
+    api::ApiConfig api;
     RenderConfig render;
     PrintConfig print;
 };

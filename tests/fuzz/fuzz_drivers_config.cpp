@@ -13,7 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const toml::table root =
             toml::parse(std::string_view(reinterpret_cast<const char*>(data), size),
                         std::string_view("fuzz.toml"));
-        const ConfigSource source{"fuzz.toml"};
+        const tilejet::config::ConfigSource source{"fuzz.toml"};
         parse_line_section(root["line"].as_table(), source);
         parse_modbus_section(root["modbus"].as_table(), source);
         parse_gpio_section(root["gpio"].as_table(), source);

@@ -7,8 +7,8 @@
 #include "tilejet/drivers/register_map.hpp"
 
 // The config sections the drivers own. Each section maps to one struct and one parse function
-// (config_parse.hpp); the daemon's config file adds sections of its own ([colour], [storage],
-// [api]) that load_drivers_config leaves alone.
+// (config_parse.hpp); the daemon's config file adds sections other modules own ([colour], [api],
+// [storage], ...) that load_drivers_config leaves alone.
 namespace tilejet::drivers {
 
 // [line]: what the conveyor looks like and which head sink to use.
@@ -85,8 +85,8 @@ struct DriversConfig {
     RegisterMap registers;
 };
 
-// The sections load_drivers_config reads; the daemon's loader reports any section that neither
-// it nor this list claims.
+// The sections load_drivers_config reads; the daemon's loader reports any section that no
+// module's list claims.
 inline constexpr std::array<const char*, 4> kDriverSections{"line", "modbus", "gpio", "sim"};
 
 // Reads [line], [modbus], [gpio] and [sim] from the file (absent sections take their

@@ -8,12 +8,14 @@
 #include <string_view>
 #include <vector>
 
-namespace tilejet::drivers {
+#include "tilejet/config/source.hpp"
 
-// Where a section came from, for error messages: "config/tilejet.toml:14: [modbus] port: ...".
-struct ConfigSource {
-    std::string file;
-};
+namespace tilejet::config {
+
+// The [name] section of a file: its table, or nullptr when the file has none. A key of that name
+// that is not a table is an error naming the file and line.
+const toml::table* find_section(const toml::table& root, const char* name,
+                                const ConfigSource& source);
 
 // One [section] of a TOML config, read key by key. Every key read is remembered, so finish()
 // can reject the keys nobody asked for: a typo in a key is an error, never a silent default
@@ -51,7 +53,4 @@ class ConfigSection {
     std::set<std::string, std::less<>> used_;
 };
 
-// Parses a whole TOML file; a syntax error names the file, line and column.
-toml::table load_toml_file(const std::string& path);
-
-}  // namespace tilejet::drivers
+}  // namespace tilejet::config

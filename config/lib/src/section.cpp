@@ -1,9 +1,9 @@
-#include "tilejet/drivers/config_section.hpp"
+#include "tilejet/config/section.hpp"
 
 #include <sstream>
 #include <stdexcept>
 
-namespace tilejet::drivers {
+namespace tilejet::config {
 
 namespace {
 
@@ -14,6 +14,16 @@ std::string type_name(const toml::node& node) {
 }
 
 }  // namespace
+
+const toml::table* find_section(const toml::table& root, const char* name,
+                                const ConfigSource& source) {
+    const toml::node* node = root.get(name);
+    if (!node) return nullptr;
+    if (!node->is_table())
+        throw std::runtime_error(source.file + ":" + std::to_string(node->source().begin.line) +
+                                 ": '" + name + "' must be a [" + name + "] section");
+    return node->as_table();
+}
 
 ConfigSection::ConfigSection(const toml::table* table, ConfigSource source, std::string name)
     : table_(table), source_(std::move(source)), name_(std::move(name)) {}
@@ -114,17 +124,4 @@ void ConfigSection::finish() const {
         if (!used_.contains(key.str())) fail(key.str(), "unknown key");
 }
 
-toml::table load_toml_file(const std::string& path) {
-    try {
-        return toml::parse_file(path);
-    } catch (const toml::parse_error& e) {
-        std::ostringstream s;
-        s << path;
-        if (e.source().begin.line)
-            s << ':' << e.source().begin.line << ':' << e.source().begin.column;
-        s << ": " << e.description();
-        throw std::runtime_error(s.str());
-    }
-}
-
-}  // namespace tilejet::drivers
+}  // namespace tilejet::config
