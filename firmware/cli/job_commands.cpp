@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "tilejet/api/access.hpp"
 #include "tilejet/api/job_request.hpp"
 #include "tilejet/api/password.hpp"
 
@@ -337,7 +338,7 @@ void add_job_commands(CLI::App& app) {
         "line); with NAME, print a whole [[users]] entry");
     passwd->add_option("NAME", p->name, "user name");
     passwd->add_option("--role", p->role, "viewer, operator (default) or engineer")
-        ->check(CLI::IsMember({"viewer", "operator", "engineer"}));
+        ->check(CLI::IsMember(api::role_names()));
     passwd->add_option("--iterations", p->iterations, "PBKDF2 iterations (tests use few)")
         ->check(CLI::Range(1, 10'000'000));
     passwd->callback([p] { run_passwd(p->name, p->role, p->iterations); });

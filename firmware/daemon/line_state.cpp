@@ -2,24 +2,25 @@
 
 #include <cstdio>
 
+#include "tilejet/config/enum_names.hpp"
+
 namespace tilejet::daemon {
 
+namespace {
+
+constexpr config::EnumNames kLineStatus{std::array<std::pair<LineStatus, std::string_view>, 6>{{
+    {LineStatus::idle, "idle"},
+    {LineStatus::ready, "ready"},
+    {LineStatus::printing, "printing"},
+    {LineStatus::paused, "paused"},
+    {LineStatus::faulted, "faulted"},
+    {LineStatus::estop, "e-stop"},
+}}};
+
+}  // namespace
+
 std::string_view to_string(LineStatus status) {
-    switch (status) {
-        case LineStatus::idle:
-            return "idle";
-        case LineStatus::ready:
-            return "ready";
-        case LineStatus::printing:
-            return "printing";
-        case LineStatus::paused:
-            return "paused";
-        case LineStatus::faulted:
-            return "faulted";
-        case LineStatus::estop:
-            return "e-stop";
-    }
-    return "?";
+    return kLineStatus.name(status);
 }
 
 void LineStateMachine::set(LineStatus status, const std::string& reason) {

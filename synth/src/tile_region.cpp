@@ -1,17 +1,25 @@
 #include "tilejet/synth/tile_region.hpp"
 
+#include "tilejet/config/enum_names.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth {
 
+namespace {
+
+constexpr config::EnumNames kLayouts{std::array<std::pair<TileLayout, std::string_view>, 2>{{
+    {TileLayout::Scatter, "scatter"},
+    {TileLayout::Wall, "wall"},
+}}};
+
+}  // namespace
+
 std::optional<TileLayout> parse_tile_layout(std::string_view name) {
-    if (name == "scatter") return TileLayout::Scatter;
-    if (name == "wall") return TileLayout::Wall;
-    return std::nullopt;
+    return kLayouts.parse(name);
 }
 
 std::string_view tile_layout_name(TileLayout layout) {
-    return layout == TileLayout::Wall ? "wall" : "scatter";
+    return kLayouts.name(layout);
 }
 
 Region tile_region(uint64_t seed, uint64_t index, const TileGeometry& g) {

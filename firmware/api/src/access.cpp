@@ -1,24 +1,29 @@
 #include "tilejet/api/access.hpp"
 
+#include "tilejet/config/enum_names.hpp"
+
 namespace tilejet::api {
 
+namespace {
+
+constexpr config::EnumNames kRoles{std::array<std::pair<Role, std::string_view>, 3>{{
+    {Role::viewer, "viewer"},
+    {Role::operator_, "operator"},
+    {Role::engineer, "engineer"},
+}}};
+
+}  // namespace
+
 std::optional<Role> parse_role(std::string_view text) {
-    if (text == "viewer") return Role::viewer;
-    if (text == "operator") return Role::operator_;
-    if (text == "engineer") return Role::engineer;
-    return std::nullopt;
+    return kRoles.parse(text);
 }
 
 std::string_view to_string(Role role) {
-    switch (role) {
-        case Role::viewer:
-            return "viewer";
-        case Role::operator_:
-            return "operator";
-        case Role::engineer:
-            return "engineer";
-    }
-    return "?";
+    return kRoles.name(role);
+}
+
+std::vector<std::string> role_names() {
+    return kRoles.names();
 }
 
 }  // namespace tilejet::api

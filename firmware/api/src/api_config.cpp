@@ -74,7 +74,7 @@ std::vector<User> parse_users(const toml::table& root, const config::ConfigSourc
             u.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                      "0123456789._-") != std::string::npos)
             s.fail("name", "'" + u.name + "': 1..64 letters, digits, '.', '_' or '-'");
-        u.role = *parse_role(s.get_choice("role", "", {"viewer", "operator", "engineer"}));
+        u.role = *parse_role(s.get_choice("role", "", role_names()));
         u.password_hash = s.require_string("password_hash");
         try {
             check_password_hash(u.password_hash);

@@ -12,8 +12,7 @@ ColourSettings parse_colour_section(const toml::table* table, const config::Conf
     ColourSettings c;
     c.output_profile = config::resolve_path(source, s.require_string("output_profile"));
     c.source_profile = config::resolve_path(source, s.get_string("source_profile", ""));
-    const std::string intent =
-        s.get_choice("intent", "perceptual", {"perceptual", "relative", "saturation", "absolute"});
+    const std::string intent = s.get_choice("intent", "perceptual", intent_names());
     c.intent = *parse_intent(intent);
     c.black_point_compensation = s.get_bool("black_point_compensation", false);
     c.ink_limit_percent = s.get_double("ink_limit_percent", 300, 0, 400);

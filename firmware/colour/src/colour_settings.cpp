@@ -1,27 +1,30 @@
 #include "tilejet/colour/colour_settings.hpp"
 
+#include "tilejet/config/enum_names.hpp"
+
 namespace tilejet::colour {
 
+namespace {
+
+constexpr config::EnumNames kIntents{std::array<std::pair<Intent, std::string_view>, 4>{{
+    {Intent::Perceptual, "perceptual"},
+    {Intent::RelativeColorimetric, "relative"},
+    {Intent::Saturation, "saturation"},
+    {Intent::AbsoluteColorimetric, "absolute"},
+}}};
+
+}  // namespace
+
 std::optional<Intent> parse_intent(std::string_view name) {
-    if (name == "perceptual") return Intent::Perceptual;
-    if (name == "relative") return Intent::RelativeColorimetric;
-    if (name == "saturation") return Intent::Saturation;
-    if (name == "absolute") return Intent::AbsoluteColorimetric;
-    return std::nullopt;
+    return kIntents.parse(name);
 }
 
 std::string_view intent_name(Intent intent) {
-    switch (intent) {
-        case Intent::Perceptual:
-            return "perceptual";
-        case Intent::RelativeColorimetric:
-            return "relative";
-        case Intent::Saturation:
-            return "saturation";
-        case Intent::AbsoluteColorimetric:
-            return "absolute";
-    }
-    return "perceptual";
+    return kIntents.name(intent);
+}
+
+std::vector<std::string> intent_names() {
+    return kIntents.names();
 }
 
 }  // namespace tilejet::colour

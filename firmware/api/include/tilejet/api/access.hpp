@@ -15,6 +15,7 @@ namespace tilejet::api {
 enum class Role { viewer, operator_, engineer };  // ordered: each may do what those before may
 std::optional<Role> parse_role(std::string_view text);
 std::string_view to_string(Role role);
+std::vector<std::string> role_names();  // every role, for config choices and messages
 
 struct User {
     std::string name;

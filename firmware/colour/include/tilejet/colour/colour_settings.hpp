@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace tilejet::colour {
 
@@ -15,6 +16,7 @@ enum class Intent { Perceptual, RelativeColorimetric, Saturation, AbsoluteColori
 std::optional<Intent> parse_intent(
     std::string_view name);  // perceptual|relative|saturation|absolute
 std::string_view intent_name(Intent intent);
+std::vector<std::string> intent_names();  // every intent, for config choices and messages
 
 struct ColourSettings {
     std::filesystem::path output_profile;  // the line's CMYK ICC profile (required)
