@@ -13,16 +13,16 @@
 #include "lattice_alignment.hpp"
 #include "patch_overlap.hpp"
 #include "pseudo_biclique.hpp"
-#include "tilejet/synth/colour_gain.hpp"
-#include "tilejet/synth/enm.hpp"
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/internal/colour_gain.hpp"
+#include "tilejet/synth/internal/enm.hpp"
 #include "tilejet/synth/internal/lab.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 #include "tilejet/synth/internal/parallel_for.hpp"
+#include "tilejet/synth/internal/rsgf.hpp"
 #include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/map_file.hpp"
-#include "tilejet/synth/rsgf.hpp"
 
 namespace tilejet::synth {
 
@@ -329,8 +329,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     if (corner_colours == 1) {
         if (progress) progress("cell image", 0, 1);
         CellImage image;
-        image.rgb = quilt_cell_image(exemplar, exemplar_lab, cell_size, quilt, params.seed);
-        const cv::Mat canvas = to_lab(tiled_neighbourhood(image.rgb));
+        image.pixels = quilt_cell_image(exemplar, exemplar_lab, cell_size, quilt, params.seed);
+        const cv::Mat canvas = to_lab(tiled_neighbourhood(image.pixels));
         const CandidateSpace space{canvas,
                                    {cell_size.width, cell_size.height},
                                    source_lab,
@@ -356,7 +356,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         for (size_t m = 0; m < set.size(); ++m) {
             if (progress) progress("cell images", m, set.size());
             CellImage image;
-            image.rgb = set.image(m).clone();
+            image.pixels = set.image(m).clone();
             const cv::Mat canvas = to_lab(set.neighbourhood(m));
             const CandidateSpace space{canvas,
                                        {cell_size.width, cell_size.height},

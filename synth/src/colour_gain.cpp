@@ -1,4 +1,4 @@
-#include "tilejet/synth/colour_gain.hpp"
+#include "tilejet/synth/internal/colour_gain.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "tilejet/synth/enm.hpp"
+#include "tilejet/synth/internal/enm.hpp"
 
 #include <algorithm>
 #include <opencv2/flann.hpp>

@@ -271,7 +271,7 @@ std::vector<Section> content_sections(const TextureMap& map) {
     for (size_t t = 0; t < map.cell_images.size(); ++t) {
         const CellImage& c = map.cell_images[t];
         Writer img, pa, pb, oa, ob;
-        write_image(img, c.rgb);
+        write_image(img, c.pixels);
         write_patches(pa, c.a), write_patches(pb, c.b);
         write_overlaps(oa, c.a), write_overlaps(ob, c.b);
         out.push_back({"CELL", uint32_t(t), std::move(img.bytes)});
@@ -537,9 +537,9 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     for (uint32_t t = 0; t < images; ++t) {
         CellImage c;
         Reader img = section("CELL", t);
-        c.rgb = read_image(img, kMaxCellSide);
+        c.pixels = read_image(img, kMaxCellSide);
         img.done();
-        if (c.rgb.cols != map.cell_width || c.rgb.rows != map.cell_height)
+        if (c.pixels.cols != map.cell_width || c.pixels.rows != map.cell_height)
             img.fail("cell image size differs from the cell size");
         Reader pa = section("PATA", t), pb = section("PATB", t);
         c.a = read_patches(pa, map), c.b = read_patches(pb, map);

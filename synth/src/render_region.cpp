@@ -27,7 +27,7 @@ constexpr size_t kStripBytes = 256 * 1024;
 // Patches never overlap one another (diamonds, the A/B split and overlap removal see to that),
 // so the order of the copies does not matter and the bytes equal Sampler::sample's.
 void render_band(const TextureMap& map, uint64_t seed, const Region& region, int row0, int row1,
-                 uint8_t* rgb, size_t stride) {
+                 uint8_t* out, size_t stride) {
     const CellGrid grid(map.cell_width, map.cell_height);
     const int64_t cw = grid.cell_width(), ch = grid.cell_height();
     const detail::CornerColours colours(map, seed);
@@ -82,7 +82,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
             if (images_row != cell_j) {
                 for (size_t c = 0; c < columns; ++c)
                     row_images[c] =
-                        &map.cell_images[colours.image(first_column + int64_t(c), cell_j)].rgb;
+                        &map.cell_images[colours.image(first_column + int64_t(c), cell_j)].pixels;
                 images_row = cell_j;
             }
             const int cell_y = int(y - cell_j * ch);
@@ -108,7 +108,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
             });
         }
         for (int r = s0; r < s1; ++r)
-            detail::stream_copy(rgb + size_t(r) * stride, strip.data() + size_t(r - s0) * row_bytes,
+            detail::stream_copy(out + size_t(r) * stride, strip.data() + size_t(r - s0) * row_bytes,
                                 row_bytes);
     }
     detail::stream_fence();
@@ -116,7 +116,7 @@ void render_band(const TextureMap& map, uint64_t seed, const Region& region, int
 
 }  // namespace
 
-void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
+void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* out,
                    size_t stride, int threads) {
     detail::check_region(region);
     if (region.width == 0 || region.height == 0) return;
@@ -125,7 +125,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
 
     if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
     const int bands = std::min(threads, region.height);
-    if (bands == 1) return render_band(map, seed, region, 0, region.height, rgb, stride);
+    if (bands == 1) return render_band(map, seed, region, 0, region.height, out, stride);
 
     std::vector<std::jthread> workers;
     workers.reserve(size_t(bands));
@@ -133,7 +133,7 @@ void render_region(const TextureMap& map, uint64_t seed, const Region& region, u
         const int row0 = int(int64_t(region.height) * b / bands);
         const int row1 = int(int64_t(region.height) * (b + 1) / bands);
         workers.emplace_back(
-            [&, row0, row1] { render_band(map, seed, region, row0, row1, rgb, stride); });
+            [&, row0, row1] { render_band(map, seed, region, row0, row1, out, stride); });
     }
 }
 

@@ -1,4 +1,4 @@
-#include "tilejet/synth/rsgf.hpp"
+#include "tilejet/synth/internal/rsgf.hpp"
 
 #include <algorithm>
 #include <cmath>

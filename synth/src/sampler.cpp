@@ -80,8 +80,8 @@ const uint8_t* Sampler::background(int64_t x, int64_t y) {
     const int64_t cw = map_.cell_width, ch = map_.cell_height;
     const CellIndex cell{detail::floor_div(x, cw), detail::floor_div(y, ch)};
     if (!background_.image || !(background_.cell == cell)) background_ = {cell, &image_of(cell)};
-    const cv::Mat& rgb = background_.image->rgb;
-    return rgb.ptr<uint8_t>(int(y - cell.j * ch)) + rgb.elemSize() * size_t(x - cell.i * cw);
+    const cv::Mat& image = background_.image->pixels;
+    return image.ptr<uint8_t>(int(y - cell.j * ch)) + image.elemSize() * size_t(x - cell.i * cw);
 }
 
 }  // namespace tilejet::synth

@@ -2,29 +2,31 @@
 
 #include <string>
 
-#include "tilejet/synth/enm.hpp"
+#include "tilejet/config/enum_names.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/enm.hpp"
+#include "tilejet/synth/internal/rsgf.hpp"
 #include "tilejet/synth/lattice.hpp"
 #include "tilejet/synth/quilt.hpp"
-#include "tilejet/synth/rsgf.hpp"
 
 namespace tilejet::synth {
 
+namespace {
+
+constexpr config::EnumNames kMethods{std::array<std::pair<SynthMethod, std::string_view>, 3>{{
+    {SynthMethod::Quilt, "quilt"},
+    {SynthMethod::Rsgf, "rsgf"},
+    {SynthMethod::Enm, "enm"},
+}}};
+
+}  // namespace
+
 std::string_view synth_method_name(SynthMethod method) {
-    switch (method) {
-        case SynthMethod::Quilt:
-            return "quilt";
-        case SynthMethod::Rsgf:
-            return "rsgf";
-        case SynthMethod::Enm:
-            return "enm";
-    }
-    return "quilt";
+    return kMethods.name(method);
 }
 
 SynthMethod parse_synth_method(std::string_view text, std::string_view option) {
-    for (SynthMethod m : {SynthMethod::Quilt, SynthMethod::Rsgf, SynthMethod::Enm})
-        if (text == synth_method_name(m)) return m;
+    if (const auto method = kMethods.parse(text)) return *method;
     throw SynthError(std::string(option) + " '" + std::string(text) +
                      "': expected quilt, rsgf or enm");
 }

@@ -15,8 +15,8 @@
 
 #include "tilejet/colour/cmyk_map.hpp"
 #include "tilejet/synth/build.hpp"
-#include "tilejet/synth/enm.hpp"
 #include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/internal/enm.hpp"
 #include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/sampler.hpp"
 

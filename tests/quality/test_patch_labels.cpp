@@ -13,7 +13,7 @@ using namespace tilejet;
 
 TEST_CASE("patch labels agree with render_region", "[quality]") {
     const synth::TextureMap& map = test::small_map();
-    const cv::Mat& cell = map.cell_images.front().rgb;
+    const cv::Mat& cell = map.cell_images.front().pixels;
     for (const synth::Region region :
          {synth::Region{-70, 33, 300, 200}, synth::Region{(int64_t(1) << 31) - 300, -5, 300, 90}}) {
         const cv::Mat rgb = synth::render_region(map, 9, region, 2);
@@ -45,7 +45,7 @@ TEST_CASE("patch labels agree with render_region", "[quality]") {
 TEST_CASE("labels change exactly where render_region switches between cell image and patch",
           "[quality]") {
     const synth::TextureMap& map = test::small_map();
-    const cv::Mat& cell = map.cell_images.front().rgb;
+    const cv::Mat& cell = map.cell_images.front().pixels;
     const synth::Region region{1000, -2000, 256, 256};
     const cv::Mat rgb = synth::render_region(map, 4, region, 1);
     const cv::Mat labels = quality::render_patch_labels(map, 4, region);

@@ -35,7 +35,7 @@ TEST_CASE("the demo design's map at default settings keeps the exemplar's mean c
 TEST_CASE("the cell image wraps around without a seam", "[build]") {
     // Across the wrap the cell image should change no more than between any two neighbouring
     // columns or rows inside it: compare the mean jump at the wrap with the typical jump.
-    const cv::Mat cell = small_map().cell_images.front().rgb;
+    const cv::Mat cell = small_map().cell_images.front().pixels;
     cv::Mat lab;
     cell.convertTo(lab, CV_32FC3, 1.0 / 255);
     cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);

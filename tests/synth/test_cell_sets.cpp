@@ -126,7 +126,7 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     REQUIRE(map.cell_images.size() == 32);
     std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
     for (const CellImage& image : map.cell_images) {
-        lab.push_back(lab_of(image.rgb));
+        lab.push_back(lab_of(image.pixels));
         lab_t.push_back(lab.back().t());
     }
     // The typical jump between two neighbouring columns or rows inside an image.
@@ -178,8 +178,8 @@ TEST_CASE("what a cell shows along an edge depends only on the edge's corner col
     std::map<std::pair<int, int>, cv::Mat> right, bottom;
     for (size_t m = 0; m < map.cell_images.size(); ++m) {
         const Corners c = corners_of(m, k);
-        const cv::Mat col = map.cell_images[m].rgb.col(kCell - 1);
-        const cv::Mat row = map.cell_images[m].rgb.row(kCell - 1);
+        const cv::Mat col = map.cell_images[m].pixels.col(kCell - 1);
+        const cv::Mat row = map.cell_images[m].pixels.row(kCell - 1);
         auto [r, fresh_r] = right.emplace(std::pair{c.tr, c.br}, col);
         auto [b, fresh_b] = bottom.emplace(std::pair{c.bl, c.br}, row);
         if (!fresh_r) REQUIRE(cv::norm(r->second, col, cv::NORM_INF) == 0);
@@ -187,7 +187,7 @@ TEST_CASE("what a cell shows along an edge depends only on the edge's corner col
     }
     REQUIRE(right.size() == size_t(k * k));
     // And images differ elsewhere: they are not one image repeated.
-    REQUIRE(cv::norm(map.cell_images[0].rgb, map.cell_images[15].rgb, cv::NORM_INF) > 0);
+    REQUIRE(cv::norm(map.cell_images[0].pixels, map.cell_images[15].pixels, cv::NORM_INF) > 0);
 }
 
 TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cell_set]") {
@@ -415,7 +415,7 @@ TEST_CASE("a source's one conspicuous feature shows in few cell images and in no
     int images_with_disc = 0, frame_pixels = 0;
     for (const CellImage& image : map.cell_images) {
         cv::Mat white;
-        cv::inRange(image.rgb, cv::Scalar::all(200), cv::Scalar::all(255), white);
+        cv::inRange(image.pixels, cv::Scalar::all(200), cv::Scalar::all(255), white);
         images_with_disc += cv::countNonZero(white) >= 100;
         cv::Mat inner = white.clone();
         inner(cv::Rect(frame, frame, cell - 2 * frame, cell - 2 * frame)).setTo(0);

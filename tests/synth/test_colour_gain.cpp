@@ -6,8 +6,8 @@
 
 #include "fixtures.hpp"
 #include "tilejet/synth/build.hpp"
-#include "tilejet/synth/colour_gain.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/colour_gain.hpp"
 #include "tilejet/synth/lattice.hpp"
 
 using namespace tilejet::synth;

@@ -115,7 +115,7 @@ TEST_CASE("a texture map survives saving and loading unchanged", "[mapfile]") {
     REQUIRE(back.build.seed == map.build.seed);
     REQUIRE(cv::norm(back.source, map.source, cv::NORM_INF) == 0);
     const CellImage &a = map.cell_images.front(), &b = back.cell_images.front();
-    REQUIRE(cv::norm(a.rgb, b.rgb, cv::NORM_INF) == 0);
+    REQUIRE(cv::norm(a.pixels, b.pixels, cv::NORM_INF) == 0);
     for (CellType t : {CellType::A, CellType::B}) {
         const PatchSet &sa = a.set(t), &sb = b.set(t);
         REQUIRE(sa.size() == sb.size());

@@ -6,10 +6,10 @@
 #include <set>
 
 #include "fixtures.hpp"
-#include "tilejet/synth/enm.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/enm.hpp"
+#include "tilejet/synth/internal/rsgf.hpp"
 #include "tilejet/synth/lattice.hpp"
-#include "tilejet/synth/rsgf.hpp"
 #include "tilejet/synth/synthesize.hpp"
 
 using namespace tilejet::synth;

@@ -7,7 +7,7 @@ std::shared_ptr<const synth::TextureMap> convert_map(const synth::TextureMap& ma
     auto converted = std::make_shared<synth::TextureMap>(map);  // id kept: same plane, other inks
     converted->source = transform.to_cmyk(map.source);
     for (synth::CellImage& image : converted->cell_images)
-        image.rgb = transform.to_cmyk(image.rgb);
+        image.pixels = transform.to_cmyk(image.pixels);
     return converted;
 }
 

@@ -76,7 +76,7 @@ Wall tilejet_wall(const synth::TextureMap& map, const WallSpec& raw) {
 Wall cell_wall(const synth::TextureMap& map, const WallSpec& raw) {
     const WallSpec spec = checked(raw);
     Wall wall = empty_wall(spec);
-    const cv::Mat& cell = map.cell_images.front().rgb;
+    const cv::Mat& cell = map.cell_images.front().pixels;
     for (int k = 0; k < spec.tiles; ++k) {
         const synth::Region region = region_of(spec, k);
         cv::Mat tile(spec.tile, CV_8UC3);

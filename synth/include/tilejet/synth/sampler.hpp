@@ -82,7 +82,7 @@ CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t 
 // Renders `region` as rows `stride` bytes apart, in the map's pixel format: interleaved 8-bit
 // R,G,B, or C,M,Y,K for a map whose images the colour module converted.
 // `threads` 0 means all cores.
-void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* rgb,
+void render_region(const TextureMap& map, uint64_t seed, const Region& region, uint8_t* out,
                    size_t stride, int threads = 0);
 cv::Mat render_region(const TextureMap& map, uint64_t seed, const Region& region, int threads = 0);
 

@@ -62,7 +62,7 @@ enum class CellType : uint8_t { A = 0, B = 1 };
 // combination of its four corners' colours, any two of which meet seamlessly where their
 // shared corners agree.
 struct CellImage {
-    cv::Mat rgb;  // CV_8UC3, R,G,B byte order (CV_8UC4 C,M,Y,K once converted for a line)
+    cv::Mat pixels;  // CV_8UC3 R,G,B, or CV_8UC4 C,M,Y,K once converted for a line
     PatchSet a, b;
     const PatchSet& set(CellType t) const { return t == CellType::A ? a : b; }
 };
