@@ -34,7 +34,8 @@ class EnumNames {
     // Every name in table order: the choices a config key or an error message lists.
     std::vector<std::string> names() const {
         std::vector<std::string> out;
-        for (const auto& entry : entries_) out.emplace_back(entry.second);
+        for (const auto& entry : entries_)
+            out.emplace_back(entry.second);
         return out;
     }
 
