@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/synth/fourier_mask.hpp"
 #include "tilejet/synth/lattice.hpp"
 
@@ -40,7 +40,7 @@ void add_analyze_commands(CLI::App& app) {
                         "also write the fractional-Fourier regular-structure mask (8-bit grey "
                         "PNG, the exemplar's size)");
     analyze->callback([path, mask] {
-        const cv::Mat exemplar = synth::load_exemplar(*path);
+        const cv::Mat exemplar = colour::load_exemplar(*path);
         if (!mask->empty()) {
             const cv::Mat grey = synth::find_fourier_mask(exemplar).evaluate_8bit(exemplar.size());
             write_grey_png(grey, *mask);

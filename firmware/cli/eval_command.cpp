@@ -17,6 +17,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
+#include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/quality/colour_match.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/quality/periodicity.hpp"
@@ -28,7 +29,6 @@
 #include "tilejet/quality/texture_energy.hpp"
 #include "tilejet/quality/wall.hpp"
 #include "tilejet/quality/wall_comparison.hpp"
-#include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/quilt.hpp"
 #include "tilejet/synth/tile_region.hpp"
@@ -224,7 +224,7 @@ void run_eval(const EvalOptions& o) {
     Shared shared;
     // The map keeps its source, which is the exemplar itself whenever the exemplar was at
     // least twice the cell size (else a quilted enlargement of it): --exemplar says for sure.
-    shared.exemplar = o.exemplar.empty() ? map.source : synth::load_exemplar(o.exemplar);
+    shared.exemplar = o.exemplar.empty() ? map.source : colour::load_exemplar(o.exemplar);
     const bool source_is_exemplar = o.exemplar.empty() &&
                                     map.source.cols == map.build.exemplar_width &&
                                     map.source.rows == map.build.exemplar_height;

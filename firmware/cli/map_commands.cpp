@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/config/section.hpp"
 #include "tilejet/config/toml_file.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
@@ -73,7 +74,7 @@ PatchCounts count_patches(const synth::TextureMap& map) {
 
 void run_build(const BuildOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    const cv::Mat scanned = synth::load_exemplar(o.exemplar);
+    const cv::Mat scanned = colour::load_exemplar(o.exemplar);
     // A design has a physical size: the exemplar is resampled once, before anything else, from
     // the resolution it was scanned at to the one it prints at.
     const double exemplar_dpi =

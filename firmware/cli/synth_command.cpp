@@ -7,7 +7,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "image_output.hpp"
-#include "tilejet/synth/exemplar.hpp"
+#include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/synth/synthesize.hpp"
 
 namespace tilejet::cli {
@@ -24,7 +24,7 @@ void run_synth(const SynthOptions& o) {
     const synth::SynthMethod method = synth::parse_synth_method(o.method, "--method");
     const Size2 size = parse_size(o.size, "--size");
     const auto start = std::chrono::steady_clock::now();
-    const cv::Mat out = synth::synthesize(synth::load_exemplar(o.exemplar), method,
+    const cv::Mat out = synth::synthesize(colour::load_exemplar(o.exemplar), method,
                                           {size.width, size.height}, o.seed);
     write_rgb_image(out, o.output);
     std::printf("wrote %s: %dx%d by %s, seed %ju, %.1f s\n", o.output.c_str(), out.cols, out.rows,

@@ -9,7 +9,6 @@
 
 #include "embedded_profile.hpp"
 #include "tilejet/synth/error.hpp"
-#include "to_srgb.hpp"
 
 namespace tilejet::synth {
 
@@ -38,7 +37,7 @@ void check_exemplar(const cv::Mat& rgb, const std::string& name) {
     check_size(rgb.size(), name);
 }
 
-cv::Mat load_exemplar(const std::filesystem::path& path) {
+cv::Mat load_exemplar(const std::filesystem::path& path, const EmbeddedProfileConversion& to_srgb) {
     const std::string name = path.string();
     {
         std::ifstream probe(path, std::ios::binary);
@@ -67,7 +66,12 @@ cv::Mat load_exemplar(const std::filesystem::path& path) {
     // Texture maps are sRGB: a photo in Adobe RGB or a camera profile is converted on intake,
     // so the colour module's default source profile is right for every map.
     const std::vector<uint8_t> icc = detail::read_embedded_profile(path);
-    if (!icc.empty()) detail::convert_to_srgb(rgb, icc, name);
+    if (!icc.empty()) {
+        if (!to_srgb)
+            throw SynthError("exemplar '" + name +
+                             "' embeds an ICC profile and nothing was given to convert it to sRGB");
+        to_srgb(rgb, icc, name);
+    }
     return rgb;
 }
 

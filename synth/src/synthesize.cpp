@@ -27,8 +27,8 @@ std::string_view synth_method_name(SynthMethod method) {
 
 SynthMethod parse_synth_method(std::string_view text, std::string_view option) {
     if (const auto method = kMethods.parse(text)) return *method;
-    throw SynthError(std::string(option) + " '" + std::string(text) +
-                     "': expected quilt, rsgf or enm");
+    throw SynthError(std::string(option) + " '" + std::string(text) + "': expected " +
+                     kMethods.choices());
 }
 
 cv::Mat synthesize(const cv::Mat& exemplar, SynthMethod method, cv::Size size, uint64_t seed) {

@@ -22,6 +22,10 @@ std::string_view tile_layout_name(TileLayout layout) {
     return kLayouts.name(layout);
 }
 
+std::string tile_layout_choices() {
+    return kLayouts.choices();
+}
+
 Region tile_region(uint64_t seed, uint64_t index, const TileGeometry& g) {
     using detail::hash_combine;
     // Origins stay within +-2^30 so that a tile of any practical size lies inside +-2^31.

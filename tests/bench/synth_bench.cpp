@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "tilejet/colour/cmyk_map.hpp"
+#include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/synth/build.hpp"
-#include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/internal/enm.hpp"
 #include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/sampler.hpp"
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     const bool smoke = argc > 1 && std::strcmp(argv[1], "--smoke") == 0;
     const std::filesystem::path exemplar_path =
         std::filesystem::path(TILEJET_SOURCE_DIR) / "config/demo/green-marble.png";
-    const cv::Mat demo = load_exemplar(exemplar_path);
+    const cv::Mat demo = tilejet::colour::load_exemplar(exemplar_path);
     const int region_side = smoke ? 256 : 4096;
     const int repeats = smoke ? 1 : 5;
 

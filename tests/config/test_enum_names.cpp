@@ -29,3 +29,15 @@ TEST_CASE("a name not in the table, or a value outside it, is said so", "[enum_n
     CHECK_FALSE(kValves.parse("open ").has_value());
     CHECK(kValves.name(static_cast<Valve>(7)) == "?");  // a corrupt integer cast to the enum
 }
+
+TEST_CASE("an error message lists an enum's names in table order", "[enum_names]") {
+    CHECK(kValves.choices() == "closed, open or stuck");
+    constexpr tilejet::config::EnumNames two{std::array<std::pair<Valve, std::string_view>, 2>{{
+        {Valve::open, "open"},
+        {Valve::closed, "shut"},
+    }}};
+    CHECK(two.choices() == "open or shut");
+    constexpr tilejet::config::EnumNames one{
+        std::array<std::pair<Valve, std::string_view>, 1>{{{Valve::stuck, "stuck"}}}};
+    CHECK(one.choices() == "stuck");
+}

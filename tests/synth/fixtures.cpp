@@ -12,8 +12,8 @@
 namespace tilejet::test {
 
 const cv::Mat& demo_exemplar() {
-    static const cv::Mat exemplar = synth::load_exemplar(std::filesystem::path(TILEJET_SOURCE_DIR) /
-                                                         "config/demo/green-marble.png");
+    static const cv::Mat exemplar = synth::load_exemplar(
+        std::filesystem::path(TILEJET_SOURCE_DIR) / "config/demo/green-marble.png", {});
     return exemplar;
 }
 

@@ -257,7 +257,7 @@ TEST_CASE("an exemplar file too large to take is refused from its header, before
     write_all(dir / "huge.png", bytes);
     REQUIRE(read_image_size(dir / "huge.png") == cv::Size(20000, 20000));
     const std::string path = (dir / "huge.png").string();
-    CHECK(in_memory_limit(400, "20000x20000", [&] { load_exemplar(path); }) == 0);
+    CHECK(in_memory_limit(400, "20000x20000", [&] { load_exemplar(path, {}); }) == 0);
     // JPEG and TIFF headers give their sizes too.
     std::vector<uint8_t> jpg;
     cv::imencode(".jpg", cv::Mat(24, 40, CV_8UC3, cv::Scalar(1, 2, 3)), jpg);

@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "tilejet/synth/tile_region.hpp"
+
 namespace tilejet::api {
 
 namespace {
@@ -98,10 +100,11 @@ jobs::JobSpec parse_job_request(std::string_view body, int default_dpi) {
     spec.dpi = j.contains("dpi") ? int(integer(j["dpi"], "dpi", 10, 2400)) : default_dpi;
     if (j.contains("profile")) spec.profile = file_name(j["profile"], "profile", "profiles");
     if (j.contains("layout")) {
-        if (!j["layout"].is_string()) bad("layout", "expected \"scatter\" or \"wall\"");
+        if (!j["layout"].is_string())
+            bad("layout", "expected a string: " + synth::tile_layout_choices());
         spec.layout = j["layout"].get<std::string>();
-        if (spec.layout != "scatter" && spec.layout != "wall")
-            bad("layout", "'" + spec.layout + "' is not scatter or wall");
+        if (!synth::parse_tile_layout(spec.layout))
+            bad("layout", "'" + spec.layout + "' is not " + synth::tile_layout_choices());
     }
     if (j.contains("wall_width"))
         spec.wall_width = int(integer(j["wall_width"], "wall_width", 1, 100000));

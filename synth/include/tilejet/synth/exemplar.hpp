@@ -1,9 +1,12 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <opencv2/core/mat.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tilejet/synth/error.hpp"
 
@@ -14,10 +17,18 @@ namespace tilejet::synth {
 inline constexpr int kMinExemplarSide = 16;
 inline constexpr int64_t kMaxExemplarPixels = int64_t(64) << 20;
 
-// Reads a PNG, JPEG or TIFF exemplar (8 or 16 bit, grey, RGB or with alpha) as 8-bit RGB.
-// Throws SynthError naming the file when it cannot be read, decoded, or is out of limits; an
-// image larger than the limits is refused from its header, before its pixels are allocated.
-cv::Mat load_exemplar(const std::filesystem::path& path);
+// Converts an exemplar's 8-bit R,G,B pixels, described by the ICC profile `icc` its file embeds,
+// to sRGB in place; throws SynthError naming exemplar `name`. The colour module, which wraps
+// LittleCMS, provides it: colour::exemplar_to_srgb.
+using EmbeddedProfileConversion =
+    std::function<void(cv::Mat& rgb, const std::vector<uint8_t>& icc, const std::string& name)>;
+
+// Reads a PNG, JPEG or TIFF exemplar (8 or 16 bit, grey, RGB or with alpha) as 8-bit sRGB:
+// pixels of a file that embeds an ICC profile go through `to_srgb` (a file with a profile and no
+// conversion given is refused). Throws SynthError naming the file when it cannot be read,
+// decoded, or is out of limits; an image larger than the limits is refused from its header,
+// before its pixels are allocated.
+cv::Mat load_exemplar(const std::filesystem::path& path, const EmbeddedProfileConversion& to_srgb);
 
 // The exemplar's resolution in pixels per inch as its file records it: PNG pHYs, JPEG JFIF
 // (APP0) or Exif (APP1), TIFF XResolution and ResolutionUnit. Nothing when the file records

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "tilejet/synth/sampler.hpp"
@@ -17,6 +18,8 @@ enum class TileLayout {
 
 std::optional<TileLayout> parse_tile_layout(std::string_view name);
 std::string_view tile_layout_name(TileLayout layout);
+// The layouts' names as an error message lists them ("scatter or wall").
+std::string tile_layout_choices();
 
 struct TileGeometry {
     int width = 0, height = 0;  // pixels

@@ -39,6 +39,16 @@ class EnumNames {
         return out;
     }
 
+    // The names as an error message lists them: "quilt, rsgf or enm".
+    std::string choices() const {
+        std::string out;
+        for (std::size_t i = 0; i < N; ++i) {
+            if (i > 0) out += i + 1 == N ? " or " : ", ";
+            out += entries_[i].second;
+        }
+        return out;
+    }
+
   private:
     std::array<Entry, N> entries_;
 };
