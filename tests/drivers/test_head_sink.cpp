@@ -220,7 +220,7 @@ TEST_CASE("a client that closes mid-tile queues nothing", "[drivers][heads][sim]
     test::LinesimProcess sim;
     {
         RawHeadsClient client(sim.config().sim.head_socket);
-        client.write("TILE job-c 0 5000\n" + std::string(3000, 'x'));
+        client.write(std::string("TILE job-c 0 5000\n").append(3000, 'x'));
     }
     auto heads = drivers::make_head_sink(sim.config());
     CHECK(heads->held(1s) == 0);

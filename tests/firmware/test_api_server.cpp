@@ -193,7 +193,7 @@ TEST_CASE("malformed JSON, unknown fields, bad values and oversize bodies name t
         {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100by100"})", 400, "tile_mm"},
         {R"({"map":"a.tjmap","seed":1,"tiles":2,"tile_mm":"100x100","layout":"grid"})", 400,
          "layout"},
-        {"{\"map\":\"/" + std::string(70 * 1024, 'a') + "\"}", 400, "body"},
+        {std::string("{\"map\":\"/").append(70 * 1024, 'a') + "\"}", 400, "body"},
     };
     for (const Case& k : cases) {
         INFO(k.body.substr(0, 120));

@@ -156,15 +156,15 @@ TEST_CASE("request lines and header blocks past 32 KB are refused without being 
     api::ApiServer server(backend, "127.0.0.1", 0, small_limits());
     {
         RawConnection c(server.port());
-        c.send("GET /" + std::string(40000, 'a'));
+        c.send(std::string("GET /").append(40000, 'a'));
         c.send(" HTTP/1.1\r\nHost: localhost\r\n\r\n");
         CHECK(c.closed_within(2s));
         CHECK_THAT(c.received(), Catch::StartsWith("HTTP/1.1 414"));
     }
     {
         RawConnection c(server.port());
-        c.send("GET /api/status HTTP/1.1\r\nHost: localhost\r\nX-Filler: " +
-               std::string(40000, 'a'));
+        c.send(std::string("GET /api/status HTTP/1.1\r\nHost: localhost\r\nX-Filler: ")
+                   .append(40000, 'a'));
         c.send("\r\n\r\n");
         CHECK(c.closed_within(2s));
         CHECK_THAT(c.received(), Catch::StartsWith("HTTP/1.1 431"));
@@ -177,7 +177,7 @@ TEST_CASE("a chunked body past its route's limit is refused as it arrives", "[ap
     const std::string head =
         "POST /api/session HTTP/1.1\r\nHost: localhost\r\n"
         "Content-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n";
-    const std::string chunk = "10000\r\n" + std::string(0x10000, ' ') + "\r\n";  // 64 KB
+    const std::string chunk = std::string("10000\r\n").append(0x10000, ' ') + "\r\n";  // 64 KB
     SECTION("a little past: read to its end and answered") {
         RawConnection c(server.port());
         REQUIRE(c.send(head + chunk + chunk + "0\r\n\r\n"));
