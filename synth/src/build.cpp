@@ -346,9 +346,13 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         map.cell_images.push_back(std::move(image));
     } else {
         if (progress) progress("cell set", 0, 1);
+        // An exemplar enlarged for the print resolution: cuts blended over the enlargement.
+        const double enlargement =
+            params.dpi > 0 && params.exemplar_dpi > 0 ? params.dpi / params.exemplar_dpi : 1;
+        const int feather = enlargement >= 2 ? int(enlargement) : 0;
         const CellSet set(map.source, source_lab,
                           {cell_size, corner_colours, params.variants, params.seed, threads,
-                           lattice ? &*lattice : nullptr});
+                           lattice ? &*lattice : nullptr, feather});
         map.corner_colours = corner_colours, map.variants = set.variants();
         // Patches as large as a third of the cell where their seams are good: the size classes
         // of best_candidates keep the large ones that fit.

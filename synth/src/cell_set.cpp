@@ -75,6 +75,7 @@ struct Canvas {
     const cv::Mat* conspicuous_uses = nullptr;
     // Large cells: the block search looks at twice the block (kSearchWindow).
     bool wide_search = false;
+    int feather = 0;  // CellSetParams::seam_feather
 
     explicit Canvas(cv::Size size)
         : rgb(size, CV_8UC3, cv::Scalar::all(0)),
@@ -231,6 +232,55 @@ namespace {
 // windows that best match the known pixels there (plus the cost of copying much-used source
 // again; lattice translations only on a lattice), the one whose minimum-cost cut through the
 // known pixels near the unknown ones is cheapest per pixel of seam.
+// Blend weights of the new block, in 1/kWhole: integers, no floating-point rounding in pixels.
+constexpr int kWhole = 256;
+
+// How much of the new block each pixel shows once the cut is blended over `feather` px each
+// side: pixels that must be new (unknown before) or are beyond `feather` on the new side show
+// it whole, those that must stay (pinned old: locked, the rim) or are beyond `feather` on the
+// old side show none of it, and the rest in proportion to their distances to the two, so the
+// blend stays one-sided where the cut runs along a pinned edge (where cuts run straight).
+cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size, int feather) {
+    cv::Mat taken(size, CV_8U);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x)
+            taken.at<uint8_t>(y, x) = cut.take_new[size_t(y) * size_t(size.width) + size_t(x)];
+    // Chessboard distances, exact integers: to the nearest new pixel and the nearest old one.
+    cv::Mat to_new, to_old;
+    cv::distanceTransform(taken == 0, to_new, cv::DIST_C, 3);
+    cv::distanceTransform(taken != 0, to_old, cv::DIST_C, 3);
+    cv::Mat whole(size, CV_8U), none(size, CV_8U);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const Pin pin = pins[size_t(y) * size_t(size.width) + size_t(x)];
+            const bool is_new = taken.at<uint8_t>(y, x) != 0;
+            // Zero marks the pixels the distances below run to.
+            whole.at<uint8_t>(y, x) =
+                pin == Pin::New || (is_new && to_old.at<float>(y, x) > float(feather)) ? 0 : 255;
+            none.at<uint8_t>(y, x) =
+                (pin == Pin::Old && !is_new) || (!is_new && to_new.at<float>(y, x) > float(feather))
+                    ? 0
+                    : 255;
+        }
+    cv::Mat to_whole, to_none;
+    cv::distanceTransform(whole, to_whole, cv::DIST_C, 3);
+    cv::distanceTransform(none, to_none, cv::DIST_C, 3);
+    cv::Mat weights(size, CV_32S);
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x) {
+            const int a = int(to_none.at<float>(y, x)), b = int(to_whole.at<float>(y, x));
+            int w;
+            if (a == 0)
+                w = 0;
+            else if (b == 0)
+                w = kWhole;
+            else
+                w = (a * kWhole + (a + b) / 2) / (a + b);
+            weights.at<int>(y, x) = w;
+        }
+    return weights;
+}
+
 // The cut may replace known pixels within `overlap` of the unknown ones, never the rest.
 // `origin` is the plane position of the canvas's top-left pixel relative to a lattice point.
 void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Mat& source_rgb,
@@ -338,15 +388,27 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
     }
     canvas.placed.push_back({rect, from.tl()});
+    const cv::Mat weights =
+        canvas.feather > 0 ? seam_weights(cut, pins, rect.size(), canvas.feather) : cv::Mat();
     for (int y = 0; y < rect.height; ++y)
-        for (int x = 0; x < rect.width; ++x)
-            if (cut.take_new[size_t(y) * size_t(rect.width) + size_t(x)]) {
-                canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x) =
-                    source_rgb.at<cv::Vec3b>(from.y + y, from.x + x);
-                canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x) =
-                    source_lab.at<cv::Vec3f>(from.y + y, from.x + x);
-                canvas.known.at<uint8_t>(rect.y + y, rect.x + x) = 255;
+        for (int x = 0; x < rect.width; ++x) {
+            const size_t n = size_t(y) * size_t(rect.width) + size_t(x);
+            const int w = weights.empty() ? (cut.take_new[n] ? kWhole : 0) : weights.at<int>(y, x);
+            if (w == 0) continue;
+            cv::Vec3b& rgb = canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x);
+            cv::Vec3f& lab = canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x);
+            const cv::Vec3b new_rgb = source_rgb.at<cv::Vec3b>(from.y + y, from.x + x);
+            const cv::Vec3f new_lab = source_lab.at<cv::Vec3f>(from.y + y, from.x + x);
+            if (w == kWhole) {
+                rgb = new_rgb, lab = new_lab;
+            } else {
+                for (int c = 0; c < 3; ++c)
+                    rgb[c] =
+                        uint8_t((new_rgb[c] * w + rgb[c] * (kWhole - w) + kWhole / 2) / kWhole);
+                lab = lab + (new_lab - lab) * (float(w) / kWhole);
             }
+            canvas.known.at<uint8_t>(rect.y + y, rect.x + x) = 255;
+        }
 }
 
 // Quilts the unknown pixels of `area` in raster order with blocks of about `block` px.
@@ -417,6 +479,7 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
     // The corner blocks stay whole: the four quarters around a vertex come from four strips,
     // and meet seamlessly only through the block they all hold.
     canvas.locked.setTo(255, canvas.known);
+    canvas.feather = params_.seam_feather;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {
@@ -481,6 +544,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     canvas.locked.setTo(255);
     canvas.locked(cv::Rect(1, 1, cw_ - 2, ch_ - 2)).setTo(0);
     canvas.avoid = &avoid;
+    canvas.feather = params_.seam_feather;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {

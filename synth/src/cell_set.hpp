@@ -46,6 +46,11 @@ struct CellSetParams {
     // Near-regular exemplars: every block and strip copies from a lattice translation (+-3 px)
     // of where it goes, so courses and grout lines run on across blocks and cells. Null: any.
     const LatticeTranslations* lattice = nullptr;
+    // How far (px) each side of a cut old and new are blended. An exemplar enlarged f times for
+    // the print resolution has nothing sharper than about f px, and a one-pixel cut through it
+    // shows as a straight hard line; blended over about f px it is as soft as the stone. 0: cuts
+    // stay hard (exemplars at their own resolution, whose grain is as sharp as a cut).
+    int seam_feather = 0;
 };
 
 class CellSet {

@@ -3,6 +3,7 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <array>
 #include <catch2/catch.hpp>
 #include <cstring>
@@ -115,15 +116,13 @@ double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
     return (grid - off) / double(on.size());
 }
 
-}  // namespace
-
-TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair the hash can pick",
-          "[cell_set]") {
-    const TextureMap& map = small_set();
-    const int k = map.corner_colours;
-    REQUIRE(k == 2);
-    REQUIRE(map.variants == 2);
-    REQUIRE(map.cell_images.size() == 32);
+// Every pair of images the hash can put side by side or one above the other meets seamlessly:
+// the jump across their edge is like a jump between two columns inside an image; pairs the hash
+// never picks jump more (the measure can fail).
+void require_seamless(const TextureMap& map) {
+    REQUIRE((map.variants == 1 || map.variants == 2));
+    const int k = map.corner_colours, variants = map.variants;
+    const int cell = map.cell_images[0].pixels.cols;
     std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
     for (const CellImage& image : map.cell_images) {
         lab.push_back(lab_of(image.pixels));
@@ -133,7 +132,7 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     double inside = 0;
     int counted = 0;
     for (size_t m = 0; m < lab.size(); ++m)
-        for (int x = 0; x + 1 < kCell; ++x, counted += 2)
+        for (int x = 0; x + 1 < cell; ++x, counted += 2)
             inside +=
                 column_jump(lab[m], x, lab[m], x + 1) + column_jump(lab_t[m], x, lab_t[m], x + 1);
     inside /= counted;
@@ -147,10 +146,10 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
             // across an edge show the other variant.
             for (const bool beside : {true, false}) {
                 const bool fits =
-                    ca.variant != cb.variant &&
+                    (variants == 1 || ca.variant != cb.variant) &&
                     (beside ? ca.tr == cb.tl && ca.br == cb.bl : ca.bl == cb.tl && ca.br == cb.tr);
-                const double jump = beside ? column_jump(lab[a], kCell - 1, lab[b], 0)
-                                           : column_jump(lab_t[a], kCell - 1, lab_t[b], 0);
+                const double jump = beside ? column_jump(lab[a], cell - 1, lab[b], 0)
+                                           : column_jump(lab_t[a], cell - 1, lab_t[b], 0);
                 if (fits) {
                     INFO("image " << a << (beside ? " left of " : " above ") << b << ": jump "
                                   << jump << ", inside " << inside);
@@ -161,12 +160,77 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
                 }
             }
         }
-    // Every pair the hash can pick: 32 images, each with 4 possible right and 4 lower neighbours.
-    REQUIRE(compatible == 2 * 32 * 4);
+    // Every pair the hash can pick: each image has K^2 possible right and K^2 lower neighbours
+    // (of the other variant when there are two).
+    REQUIRE(compatible == 2 * int(lab.size()) * k * k);
     // The measure can fail: pairs the hash never picks do not meet seamlessly.
     INFO("compatible " << compatible_sum / compatible << ", others "
                        << incompatible_sum / incompatible);
     REQUIRE(incompatible_sum / incompatible > 1.5 * compatible_sum / compatible);
+}
+
+}  // namespace
+
+TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair the hash can pick",
+          "[cell_set]") {
+    const TextureMap& map = small_set();
+    REQUIRE(map.corner_colours == 2);
+    REQUIRE(map.variants == 2);
+    REQUIRE(map.cell_images.size() == 32);
+    require_seamless(map);
+}
+
+TEST_CASE(
+    "cuts through an enlarged exemplar are blended as soft as the stone, cells still seamless",
+    "[cell_set]") {
+    // The demo design's middle enlarged 4 times (as for 200 dpi from a 50 dpi scan): nothing in
+    // it changes faster than over a few pixels, and a hard one-pixel cut would stand out.
+    cv::Mat enlarged;
+    cv::resize(demo_exemplar()(cv::Rect(96, 96, 72, 72)), enlarged, {288, 288}, 0, 0,
+               cv::INTER_CUBIC);
+    auto build = [&](double dpi, double exemplar_dpi) {
+        BuildParams p;
+        p.corner_colours = 2;
+        p.variants = 1;
+        p.cell_size = 96;
+        p.patches = 12;
+        p.candidates = 96;
+        p.seed = 5;
+        p.dpi = dpi, p.exemplar_dpi = exemplar_dpi;
+        return build_texture_map(enlarged, p);
+    };
+    const TextureMap hard = build(0, 0), soft = build(200, 50);
+    require_seamless(soft);
+
+    // Hard edges: steps between neighbouring pixels larger than any but the top 0.1 % of the
+    // enlarged exemplar's own.
+    auto steps = [](const cv::Mat& rgb) {
+        const cv::Mat lab = lab_of(rgb);
+        std::vector<double> out;
+        for (int y = 0; y + 1 < lab.rows; ++y)
+            for (int x = 0; x + 1 < lab.cols; ++x) {
+                const cv::Vec3f p = lab.at<cv::Vec3f>(y, x);
+                out.push_back(cv::norm(p - lab.at<cv::Vec3f>(y, x + 1)));
+                out.push_back(cv::norm(p - lab.at<cv::Vec3f>(y + 1, x)));
+            }
+        return out;
+    };
+    std::vector<double> own = steps(enlarged);
+    std::sort(own.begin(), own.end());
+    const double sharpest = own[own.size() * 999 / 1000];
+    auto hard_share = [&](const TextureMap& map) {
+        size_t above = 0, all = 0;
+        for (const CellImage& image : map.cell_images)
+            for (double step : steps(image.pixels))
+                above += step > sharpest, ++all;
+        return double(above) / double(all);
+    };
+    const double hard_edges = hard_share(hard), soft_edges = hard_share(soft);
+    INFO("share of steps above the exemplar's 99.9th percentile ("
+         << sharpest << " dE): cuts " << hard_edges << ", blended " << soft_edges);
+    REQUIRE(hard_edges > 0.004);  // the measure can fail: hard cuts show in it
+    REQUIRE(soft_edges < 0.4 * hard_edges);
+    REQUIRE(soft_edges < 0.003);
 }
 
 TEST_CASE("what a cell shows along an edge depends only on the edge's corner colours",
