@@ -228,10 +228,6 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
 
 namespace {
 
-// Where `canvas`'s unknown pixels inside `rect` should copy from, and the seam: of the source
-// windows that best match the known pixels there (plus the cost of copying much-used source
-// again; lattice translations only on a lattice), the one whose minimum-cost cut through the
-// known pixels near the unknown ones is cheapest per pixel of seam.
 // Blend weights of the new block, in 1/kWhole: integers, no floating-point rounding in pixels.
 constexpr int kWhole = 256;
 
@@ -241,10 +237,8 @@ constexpr int kWhole = 256;
 // old side show none of it, and the rest in proportion to their distances to the two, so the
 // blend stays one-sided where the cut runs along a pinned edge (where cuts run straight).
 cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size, int feather) {
-    cv::Mat taken(size, CV_8U);
-    for (int y = 0; y < size.height; ++y)
-        for (int x = 0; x < size.width; ++x)
-            taken.at<uint8_t>(y, x) = cut.take_new[size_t(y) * size_t(size.width) + size_t(x)];
+    // A read-only view of the cut's row-major 0/1 pixels.
+    const cv::Mat taken(size, CV_8U, const_cast<uint8_t*>(cut.take_new.data()));
     // Chessboard distances, exact integers: to the nearest new pixel and the nearest old one.
     cv::Mat to_new, to_old;
     cv::distanceTransform(taken == 0, to_new, cv::DIST_C, 3);
@@ -281,6 +275,10 @@ cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size
     return weights;
 }
 
+// Where `canvas`'s unknown pixels inside `rect` should copy from, and the seam: of the source
+// windows that best match the known pixels there (plus the cost of copying much-used source
+// again; lattice translations only on a lattice), the one whose minimum-cost cut through the
+// known pixels near the unknown ones is cheapest per pixel of seam.
 // The cut may replace known pixels within `overlap` of the unknown ones, never the rest.
 // `origin` is the plane position of the canvas's top-left pixel relative to a lattice point.
 void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Mat& source_rgb,

@@ -14,6 +14,7 @@
 #include <set>
 
 #include "fixtures.hpp"
+#include "tilejet/colour/statistics.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/quilt.hpp"
@@ -216,8 +217,7 @@ TEST_CASE(
         return out;
     };
     std::vector<double> own = steps(enlarged);
-    std::sort(own.begin(), own.end());
-    const double sharpest = own[own.size() * 999 / 1000];
+    const double sharpest = tilejet::colour::percentile(own, 0.999);
     auto hard_share = [&](const TextureMap& map) {
         size_t above = 0, all = 0;
         for (const CellImage& image : map.cell_images)

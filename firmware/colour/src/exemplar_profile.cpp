@@ -16,8 +16,7 @@ void exemplar_to_srgb(cv::Mat& rgb, const std::vector<uint8_t>& icc, const std::
     LcmsContext lcms;
     // Grey scans keep their grey profile; anything else must describe RGB (parse_icc_profile
     // refuses a CMYK photo by name).
-    const bool grey =
-        icc.size() >= 20 && icc[16] == 'G' && icc[17] == 'R' && icc[18] == 'A' && icc[19] == 'Y';
+    const bool grey = icc_data_space(icc) == uint32_t(cmsSigGrayData);
     IccProfile source;
     try {
         source = parse_icc_profile(lcms, icc, name, "ICC profile embedded in exemplar",

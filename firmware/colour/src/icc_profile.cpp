@@ -36,6 +36,10 @@ const char* space_name(uint32_t s) {
 
 }  // namespace
 
+uint32_t icc_data_space(const std::vector<uint8_t>& bytes) {
+    return bytes.size() >= 20 ? be32(bytes.data() + 16) : 0;
+}
+
 IccProfile load_icc_profile(LcmsContext& lcms, const std::filesystem::path& path, const char* role,
                             cmsColorSpaceSignature space) {
     std::ifstream in(path, std::ios::binary);
@@ -59,9 +63,7 @@ IccProfile parse_icc_profile(LcmsContext& lcms, std::vector<uint8_t> bytes,
     if (declared > p.bytes.size())
         throw ColourError(where + " is truncated: its header says " + std::to_string(declared) +
                           " bytes, the file has " + std::to_string(p.bytes.size()));
-    // The data colour space is read from the header as a plain number: LittleCMS hands it back
-    // as an enum, and a crafted file can hold a value outside it (found by fuzzing).
-    const uint32_t actual = be32(p.bytes.data() + 16);
+    const uint32_t actual = icc_data_space(p.bytes);
     if (actual != uint32_t(space))
         throw ColourError(where + " is " + space_name(actual) + "; the " + role + " must be " +
                           space_name(uint32_t(space)));

@@ -15,6 +15,10 @@ struct IccProfile {
     Profile handle;
 };
 
+// The data colour space an ICC header declares, read as a plain number (a crafted file can hold
+// a value outside LittleCMS's enum, found by fuzzing); 0 when there is no header to read it from.
+uint32_t icc_data_space(const std::vector<uint8_t>& bytes);
+
 // `role` names the profile in messages ("output profile", "source profile", ...).
 // `space` is the data colour space the role needs (cmsSigCmykData, cmsSigRgbData, ...).
 IccProfile load_icc_profile(LcmsContext& lcms, const std::filesystem::path& path, const char* role,
