@@ -275,6 +275,17 @@ cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size
     return weights;
 }
 
+// Mixes `w`/kWhole of the new pixel into the old one; 0 and kWhole copy exactly.
+void blend_in(cv::Vec3b& rgb, cv::Vec3f& lab, cv::Vec3b new_rgb, cv::Vec3f new_lab, int w) {
+    if (w == kWhole) {
+        rgb = new_rgb, lab = new_lab;
+    } else if (w > 0) {
+        for (int c = 0; c < 3; ++c)
+            rgb[c] = uint8_t((new_rgb[c] * w + rgb[c] * (kWhole - w) + kWhole / 2) / kWhole);
+        lab = lab + (new_lab - lab) * (float(w) / kWhole);
+    }
+}
+
 // Where `canvas`'s unknown pixels inside `rect` should copy from, and the seam: of the source
 // windows that best match the known pixels there (plus the cost of copying much-used source
 // again; lattice translations only on a lattice), the one whose minimum-cost cut through the
@@ -393,18 +404,10 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             const size_t n = size_t(y) * size_t(rect.width) + size_t(x);
             const int w = weights.empty() ? (cut.take_new[n] ? kWhole : 0) : weights.at<int>(y, x);
             if (w == 0) continue;
-            cv::Vec3b& rgb = canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x);
-            cv::Vec3f& lab = canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x);
-            const cv::Vec3b new_rgb = source_rgb.at<cv::Vec3b>(from.y + y, from.x + x);
-            const cv::Vec3f new_lab = source_lab.at<cv::Vec3f>(from.y + y, from.x + x);
-            if (w == kWhole) {
-                rgb = new_rgb, lab = new_lab;
-            } else {
-                for (int c = 0; c < 3; ++c)
-                    rgb[c] =
-                        uint8_t((new_rgb[c] * w + rgb[c] * (kWhole - w) + kWhole / 2) / kWhole);
-                lab = lab + (new_lab - lab) * (float(w) / kWhole);
-            }
+            blend_in(canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x),
+                     canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x),
+                     source_rgb.at<cv::Vec3b>(from.y + y, from.x + x),
+                     source_lab.at<cv::Vec3f>(from.y + y, from.x + x), w);
             canvas.known.at<uint8_t>(rect.y + y, rect.x + x) = 255;
         }
 }
@@ -467,16 +470,25 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
         horizontal ? cv::Size(cw_ + 2 * w_, 2 * w_) : cv::Size(2 * w_, ch_ + 2 * w_);
     Canvas canvas(size);
     const cv::Point second = horizontal ? cv::Point(cw_, 0) : cv::Point(0, ch_);
-    const cv::Rect block_a(corner_source_[a], cv::Size(2 * c_, 2 * c_));
-    const cv::Rect block_b(corner_source_[b], cv::Size(2 * c_, 2 * c_));
     const cv::Point core(w_ - c_, w_ - c_);  // the vertex lies w px in, c px into the core
-    canvas.paste(source_rgb_(block_a), source_lab_(block_a), core);
-    canvas.paste(source_rgb_(block_b), source_lab_(block_b), second + core);
+    for (const auto& [colour, at] : {std::pair{a, core}, std::pair{b, second + core}}) {
+        // The corner blocks stay whole: the four quarters around a vertex come from four
+        // strips, and meet seamlessly only through the block they all hold. Where cuts are
+        // blended, the block comes with a ring of what surrounds it in the source, free for the
+        // strip's cut: that cut blends into the core's own surroundings, where a cut along the
+        // locked core itself had nothing to blend with and drew the core as a hard square at
+        // every vertex of its colour (the demo design at 360 dpi).
+        const cv::Point from = corner_source_[colour];
+        const int ring =
+            std::min({2 * params_.seam_feather, w_ - c_ - 1, from.x, from.y,
+                      source_rgb_.cols - from.x - 2 * c_, source_rgb_.rows - from.y - 2 * c_});
+        const cv::Rect block(from - cv::Point(ring, ring),
+                             cv::Size(2 * (c_ + ring), 2 * (c_ + ring)));
+        canvas.paste(source_rgb_(block), source_lab_(block), at - cv::Point(ring, ring));
+        canvas.locked(cv::Rect(at, cv::Size(2 * c_, 2 * c_))).setTo(255);
+    }
     Rng rng(hash_combine(hash_combine(params_.seed, kStripStream),
                          uint64_t(horizontal) * 65536 + uint64_t(a) * uint64_t(k_) + b));
-    // The corner blocks stay whole: the four quarters around a vertex come from four strips,
-    // and meet seamlessly only through the block they all hold.
-    canvas.locked.setTo(255, canvas.known);
     canvas.feather = params_.seam_feather;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
@@ -530,12 +542,23 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
                         pin = Pin::Free;
                 }
             const Cut cut = min_cut(h_lab(corner), v_lab(corner), pins);
+            // Blended like every other cut: inside the core the two strips agree, and the cut
+            // left it along the core's side as a hard line at every vertex (the demo design
+            // at 360 dpi). The pinned edges keep their strips exactly.
+            const cv::Mat weights =
+                params_.seam_feather > 0
+                    ? seam_weights(cut, pins, corner.size(), params_.seam_feather)
+                    : cv::Mat();
             for (int y = 0; y < w_; ++y)
                 for (int x = 0; x < w_; ++x) {
-                    const bool vertical = cut.take_new[size_t(y) * size_t(w_) + size_t(x)];
+                    const size_t n = size_t(y) * size_t(w_) + size_t(x);
                     const cv::Point at = corner.tl() + cv::Point(x, y);
-                    canvas.rgb.at<cv::Vec3b>(at) = (vertical ? v_rgb : h_rgb).at<cv::Vec3b>(at);
-                    canvas.lab.at<cv::Vec3f>(at) = (vertical ? v_lab : h_lab).at<cv::Vec3f>(at);
+                    cv::Vec3b& rgb = canvas.rgb.at<cv::Vec3b>(at);
+                    cv::Vec3f& lab = canvas.lab.at<cv::Vec3f>(at);
+                    rgb = h_rgb.at<cv::Vec3b>(at), lab = h_lab.at<cv::Vec3f>(at);
+                    blend_in(
+                        rgb, lab, v_rgb.at<cv::Vec3b>(at), v_lab.at<cv::Vec3f>(at),
+                        weights.empty() ? (cut.take_new[n] ? kWhole : 0) : weights.at<int>(y, x));
                 }
         }
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge.

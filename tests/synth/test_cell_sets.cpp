@@ -229,8 +229,10 @@ TEST_CASE(
     INFO("share of steps above the exemplar's 99.9th percentile ("
          << sharpest << " dE): cuts " << hard_edges << ", blended " << soft_edges);
     REQUIRE(hard_edges > 0.004);  // the measure can fail: hard cuts show in it
-    REQUIRE(soft_edges < 0.4 * hard_edges);
-    REQUIRE(soft_edges < 0.003);
+    // Cuts round the corner cores blend too (into the core's own surroundings): with those
+    // cuts left hard the blended set kept 0.21 of the hard share, with them blended 0.13.
+    REQUIRE(soft_edges < 0.17 * hard_edges);
+    REQUIRE(soft_edges < 0.0016);
 }
 
 TEST_CASE("what a cell shows along an edge depends only on the edge's corner colours",
