@@ -236,9 +236,15 @@ constexpr int kWhole = 256;
 // it whole, those that must stay (pinned old: locked, the rim) or are beyond `feather` on the
 // old side show none of it, and the rest in proportion to their distances to the two, so the
 // blend stays one-sided where the cut runs along a pinned edge (where cuts run straight).
+// With no feather, the cut itself: each pixel all old or all new.
 cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size, int feather) {
     // A read-only view of the cut's row-major 0/1 pixels.
     const cv::Mat taken(size, CV_8U, const_cast<uint8_t*>(cut.take_new.data()));
+    cv::Mat weights(size, CV_32S);
+    if (feather == 0) {
+        taken.convertTo(weights, CV_32S, kWhole);
+        return weights;
+    }
     // Chessboard distances, exact integers: to the nearest new pixel and the nearest old one.
     cv::Mat to_new, to_old;
     cv::distanceTransform(taken == 0, to_new, cv::DIST_C, 3);
@@ -259,7 +265,6 @@ cv::Mat seam_weights(const Cut& cut, const std::vector<Pin>& pins, cv::Size size
     cv::Mat to_whole, to_none;
     cv::distanceTransform(whole, to_whole, cv::DIST_C, 3);
     cv::distanceTransform(none, to_none, cv::DIST_C, 3);
-    cv::Mat weights(size, CV_32S);
     for (int y = 0; y < size.height; ++y)
         for (int x = 0; x < size.width; ++x) {
             const int a = int(to_none.at<float>(y, x)), b = int(to_whole.at<float>(y, x));
@@ -397,12 +402,10 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
     }
     canvas.placed.push_back({rect, from.tl()});
-    const cv::Mat weights =
-        canvas.feather > 0 ? seam_weights(cut, pins, rect.size(), canvas.feather) : cv::Mat();
+    const cv::Mat weights = seam_weights(cut, pins, rect.size(), canvas.feather);
     for (int y = 0; y < rect.height; ++y)
         for (int x = 0; x < rect.width; ++x) {
-            const size_t n = size_t(y) * size_t(rect.width) + size_t(x);
-            const int w = weights.empty() ? (cut.take_new[n] ? kWhole : 0) : weights.at<int>(y, x);
+            const int w = weights.at<int>(y, x);
             if (w == 0) continue;
             blend_in(canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x),
                      canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x),
@@ -545,20 +548,15 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
             // Blended like every other cut: inside the core the two strips agree, and the cut
             // left it along the core's side as a hard line at every vertex (the demo design
             // at 360 dpi). The pinned edges keep their strips exactly.
-            const cv::Mat weights =
-                params_.seam_feather > 0
-                    ? seam_weights(cut, pins, corner.size(), params_.seam_feather)
-                    : cv::Mat();
+            const cv::Mat weights = seam_weights(cut, pins, corner.size(), params_.seam_feather);
             for (int y = 0; y < w_; ++y)
                 for (int x = 0; x < w_; ++x) {
-                    const size_t n = size_t(y) * size_t(w_) + size_t(x);
                     const cv::Point at = corner.tl() + cv::Point(x, y);
                     cv::Vec3b& rgb = canvas.rgb.at<cv::Vec3b>(at);
                     cv::Vec3f& lab = canvas.lab.at<cv::Vec3f>(at);
                     rgb = h_rgb.at<cv::Vec3b>(at), lab = h_lab.at<cv::Vec3f>(at);
-                    blend_in(
-                        rgb, lab, v_rgb.at<cv::Vec3b>(at), v_lab.at<cv::Vec3f>(at),
-                        weights.empty() ? (cut.take_new[n] ? kWhole : 0) : weights.at<int>(y, x));
+                    blend_in(rgb, lab, v_rgb.at<cv::Vec3b>(at), v_lab.at<cv::Vec3f>(at),
+                             weights.at<int>(y, x));
                 }
         }
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge.
