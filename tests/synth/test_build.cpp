@@ -22,7 +22,8 @@ TEST_CASE("a rendered region has the exemplar's mean CIELab colour", "[build]") 
     REQUIRE(delta_e < 3.0);
 }
 
-TEST_CASE("the demo design's map at default settings keeps the exemplar's mean colour", "[build]") {
+TEST_CASE("the demo design's map at default settings keeps the exemplar's mean colour",
+          "[build][heavy]") {
     // Regression: a cell image chosen for calm over colour made the demo wall 4.9 dE2000 dark.
     const TextureMap map = build_texture_map(demo_exemplar(), BuildParams{});
     const cv::Vec3d ex = mean_lab(demo_exemplar());

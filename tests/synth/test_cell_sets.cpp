@@ -337,7 +337,7 @@ TEST_CASE("with two variants no two cells across an edge show the same image", "
 }
 
 TEST_CASE("by default, large cells that copy their source more than once get two variants",
-          "[cell_set][slab]") {
+          "[cell_set][slab][heavy]") {
     cv::Mat noise(420, 420, CV_8UC3);
     cv::RNG(7).fill(noise, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
     BuildParams p;

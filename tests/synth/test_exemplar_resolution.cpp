@@ -308,7 +308,7 @@ TEST_CASE("map build needs the exemplar's resolution and records the design's si
 }
 
 TEST_CASE("the default cell holds the stone's largest structures: fine grain, small cells",
-          "[exemplar][build][cell]") {
+          "[exemplar][build][cell][heavy]") {
     // Noise blurred to grains of a few pixels and to blotches of about 70 px.
     cv::Mat noise(320, 320, CV_8UC3), fine, coarse;
     cv::randu(noise, 0, 256);

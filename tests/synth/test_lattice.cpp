@@ -167,7 +167,8 @@ double course_continuity(const cv::Mat& rgb, int first_border, int cell_width) {
 
 }  // namespace
 
-TEST_CASE("a map of brick courses keeps the courses running across cells", "[lattice][courses]") {
+TEST_CASE("a map of brick courses keeps the courses running across cells",
+          "[lattice][courses][heavy]") {
     const double pitch = 16.6;
     const cv::Mat exemplar = tilejet::test::make_course_texture(pitch, {300, 300}, 5);
     const Lattice truth = detect_lattice(exemplar);
