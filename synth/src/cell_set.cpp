@@ -1,6 +1,7 @@
 #include "cell_set.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "graph_cut.hpp"
@@ -41,10 +42,17 @@ constexpr double kUsageCost = 0.5;
 // 1.02; gravel's texture energy 1.31 against 1.18). Lattices (grout lines) are left out.
 constexpr double kConspicuousZ2 = 2.0;
 // Copying a conspicuous pixel costs this many times its squared excess (in units of the source's
-// variance) for every copy other images and strips made before, so the set shows it about once. A
-// strip pays it for the first copy too: each strip shows at a quarter of all cell edges (K = 2),
-// and the vein copied into one drew a white tick at every fourth edge.
+// variance), once for the copy and once more for every copy other images and strips made before.
+// The first copy is charged too: whatever a cell image shows recurs at the same place of one
+// cell in 2K^4, and a strip's at a quarter of all cell edges (K = 2): the demo design's white
+// vein, copied once into one image, showed as the same white comma three times in 5120 px.
+// The graph-cut patches, each shown far more rarely, are where such features belong.
 constexpr double kConspicuousCost = 1.0;
+// A block search on a large cell looks at one random window of the source; where that window
+// lay on the demo design's vein, all its best matches held the vein, and the vein went whole
+// into a cell image at any cost. Up to this many windows are searched until one offers a
+// candidate with nothing conspicuous.
+constexpr int kConspicuousWindows = 4;
 // Cells larger than this (those of exemplars of 1024 px and more) get the cost of conspicuous
 // pixels and the wider block search, when the set must copy its source more than once. Where it
 // need not (an 8192 px slab: its set covers a tenth of it) features do not recur, and the wide
@@ -68,9 +76,8 @@ struct Canvas {
     const cv::Mat* usage = nullptr;
     double usage_weight = 0;  // match cost of copying a pixel once more, per overlap pixel
     // How conspicuous each source pixel is, as a match cost (CV_32F), or none: each use of it
-    // costs that much again, and the first one too in what neighbours share.
+    // costs that much, the first one too.
     const cv::Mat* conspicuous = nullptr;
-    bool shared = false;
     // The uses conspicuous pixels are charged for, when not `usage`: those of every variant.
     const cv::Mat* conspicuous_uses = nullptr;
     // Large cells: the block search looks at twice the block (kSearchWindow).
@@ -342,7 +349,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             // they pushed blocks off the vein's continuation, and cuts ran straight across it).
             const cv::Mat& others =
                 canvas.conspicuous_uses ? *canvas.conspicuous_uses : *canvas.usage;
-            cost = per_use * used + canvas.conspicuous->mul(canvas.shared ? others + 1 : others);
+            cost = per_use * used + canvas.conspicuous->mul(others + 1);
             scale = 1;
         }
         cv::Mat sums;
@@ -367,9 +374,19 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                             ? std::max(kSearchWindow, 2 * std::max(rect.width, rect.height))
                             : kSearchWindow};
     if (!penalty.empty()) search.penalty = &penalty;
+    // How much of what is conspicuous in the source a window at `corner` would copy.
+    const auto conspicuous_in = [&](cv::Point corner) {
+        return canvas.conspicuous ? cv::sum((*canvas.conspicuous)(cv::Rect(corner, rect.size())))[0]
+                                  : 0.0;
+    };
     std::vector<cv::Point> candidates;
     if (cv::countNonZero(mask) > 0)
-        candidates = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
+        for (int tries = canvas.conspicuous ? kConspicuousWindows : 1; tries > 0; --tries) {
+            const auto more = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
+            candidates.insert(candidates.end(), more.begin(), more.end());
+            if (std::ranges::any_of(more, [&](cv::Point c) { return conspicuous_in(c) == 0; }))
+                break;
+        }
     if (candidates.empty()) {  // nothing to match yet (or no lattice offset fits): anywhere
         cv::Point corner(rng.range(0, source_lab.cols - rect.width),
                          rng.range(0, source_lab.rows - rect.height));
@@ -393,10 +410,15 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 pin = near.at<uint8_t>(y, x) ? Pin::Free : Pin::Old;
         }
     // The best-matching windows, judged by the seam their cut would leave (what shows, and what
-    // texture energy counts), not by the overlap's mean difference alone.
+    // texture energy counts), not by the overlap's mean difference alone; of those with nothing
+    // conspicuous, else of the least conspicuous (a better seam is no reason to repeat a vein).
+    double least_conspicuous = std::numeric_limits<double>::infinity();
+    for (const cv::Point& corner : candidates)
+        least_conspicuous = std::min(least_conspicuous, conspicuous_in(corner));
     Cut cut;
     cv::Rect from;
     for (const cv::Point& corner : candidates) {
+        if (conspicuous_in(corner) > least_conspicuous) continue;
         const cv::Rect window(corner, rect.size());
         Cut c = min_cut(canvas.lab(rect), source_lab(window), pins);
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
@@ -497,7 +519,6 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
     canvas.usage_weight = usage_weight_;
     if (large_) {
         canvas.conspicuous = &conspicuous_;
-        canvas.shared = true;
         canvas.wide_search = true;
     }
     // The strip's top-left pixel lies (w, w) before its first vertex, a lattice point.
