@@ -26,7 +26,11 @@ CellIndex diamond_cell(const TextureMap& map, CellType type, int64_t x, int64_t 
     return CellGrid(map.cell_width, map.cell_height).cell(type, x, y);
 }
 
-Sampler::Sampler(const TextureMap& map, uint64_t seed) : map_(map), seed_(seed) {}
+Sampler::Sampler(const TextureMap& map, uint64_t seed)
+    : map_(map),
+      seed_(seed),
+      source_step_(map.source.step[0]),
+      source_elem_(map.source.elemSize()) {}
 
 const CellImage& Sampler::image_of(CellIndex cell) const {
     return map_.cell_images[detail::CornerColours(map_, seed_).image(cell.i, cell.j)];
@@ -37,12 +41,18 @@ const Sampler::Memo& Sampler::memo(CellType type, CellIndex cell) {
                                    0xff51afd7ed558ccdull >>
                                58);
     Memo& memo = memo_[size_t(type)][slot];
-    if (!memo.valid || !(memo.cell == cell)) {
+    if (!(memo.cell == cell)) {
         const uint64_t key = detail::cell_key(map_.id64(), seed_, 0, type, cell.i, cell.j);
-        memo.image = &image_of(cell);
-        detail::compute_active_set(memo.image->set(type), key, memo.active);
+        const PatchSet& set = image_of(cell).set(type);
+        detail::compute_active_set(set, key, memo.active);
+        memo.shown.clear();
+        for (uint16_t k : memo.active) {
+            const Patch& p = set.patches[k];
+            memo.shown.push_back(
+                {p.x, p.y, p.width, p.height, p.row_bytes(), p.bits.data(),
+                 map_.source.ptr<uint8_t>(p.src_y) + source_elem_ * size_t(p.src_x)});
+        }
         memo.cell = cell;
-        memo.valid = true;
     }
     return memo;
 }
@@ -61,16 +71,16 @@ const uint8_t* Sampler::pixel(int64_t x, int64_t y) {
         const CellIndex cell = cells[size_t(type)];
         // Neighbouring pixels mostly share their cells: skip the memo lookup then.
         Current& current = current_[size_t(type)];
-        if (!current.memo || !(current.cell == cell)) current = {cell, &memo(type, cell)};
-        const PatchSet& set = current.memo->image->set(type);
+        if (!(current.cell == cell)) {
+            const Memo& m = memo(type, cell);
+            current = {cell, m.shown.data(), m.shown.data() + m.shown.size()};
+        }
         const int64_t px = x - cell.i * grid.cell_width(), py = y - cell.j * grid.cell_height();
-        for (uint16_t k : current.memo->active) {
-            const Patch& p = set.patches[k];
-            const int64_t bx = px - p.x, by = py - p.y;
-            if (bx < 0 || by < 0 || bx >= p.width || by >= p.height) continue;
-            if (!p.covers(int(bx), int(by))) continue;
-            return map_.source.ptr<uint8_t>(p.src_y + int(by)) +
-                   map_.source.elemSize() * size_t(p.src_x + bx);
+        for (const ShownPatch* p = current.begin; p != current.end; ++p) {
+            const int64_t bx = px - p->x, by = py - p->y;
+            if (bx < 0 || by < 0 || bx >= p->width || by >= p->height) continue;
+            if (!mask_bit(p->bits, p->row_bytes, bx, by)) continue;
+            return p->src + source_step_ * size_t(by) + source_elem_ * size_t(bx);
         }
     }
     return background(x, y);
@@ -79,7 +89,7 @@ const uint8_t* Sampler::pixel(int64_t x, int64_t y) {
 const uint8_t* Sampler::background(int64_t x, int64_t y) {
     const int64_t cw = map_.cell_width, ch = map_.cell_height;
     const CellIndex cell{detail::floor_div(x, cw), detail::floor_div(y, ch)};
-    if (!background_.image || !(background_.cell == cell)) background_ = {cell, &image_of(cell)};
+    if (!(background_.cell == cell)) background_ = {cell, &image_of(cell)};
     const cv::Mat& image = background_.image->pixels;
     return image.ptr<uint8_t>(int(y - cell.j * ch)) + image.elemSize() * size_t(x - cell.i * cw);
 }

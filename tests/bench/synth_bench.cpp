@@ -95,15 +95,24 @@ int main(int argc, char** argv) {
     {
         const int side = smoke ? 128 : 1024;
         Sampler sampler(map, 77);
-        const double s = best_seconds(repeats, [&] {
-            uint64_t sum = 0;
-            for (int y = 0; y < side; ++y)
-                for (int x = 0; x < side; ++x)
-                    sum += sampler.sample(x - 5000, y + 7000).g;
-            g_sink = g_sink + sum;
-        });
-        row("sample(), scan order, 1 core", fmt("%.1f ns/px", s * 1e9 / (double(side) * side)), "-",
-            "<= 50 ns/px");
+        // Many short passes, best and median: on a shared virtual machine the same pass swings
+        // from 30 to 50 ns/px over seconds as other tenants load the shared cache, while a
+        // register-only loop beside it keeps its time.
+        std::vector<double> passes;
+        for (int r = 0; r < (smoke ? 1 : 25); ++r)
+            passes.push_back(best_seconds(1, [&] {
+                uint64_t sum = 0;
+                for (int y = 0; y < side; ++y)
+                    for (int x = 0; x < side; ++x)
+                        sum += sampler.sample(x - 5000, y + 7000).g;
+                g_sink = g_sink + sum;
+            }));
+        std::sort(passes.begin(), passes.end());
+        const double per_px = 1e9 / (double(side) * side);
+        row("sample(), scan order, 1 core",
+            fmt("%.1f ns/px", passes.front() * per_px) +
+                fmt(" (median %.1f)", passes[passes.size() / 2] * per_px),
+            "-", "<= 50 ns/px");
         const int points = smoke ? 1000 : 200000;
         const double r = best_seconds(repeats, [&] {
             uint64_t sum = 0, h = 12345;
