@@ -117,20 +117,28 @@ void print_summary(const quality::ReportPage& page, const std::filesystem::path&
                 quality::gate_figure(g.patch_coverage * 100).c_str());
     if (!page.side_by_side.empty())
         std::printf("walls side by side: %s\n", (dir / "walls-side-by-side.png").c_str());
-    std::printf("%-8s %11s %14s %12s %18s %10s\n", "method", "periodicity", "texture_energy",
-                "repeat_scale", "tile_pairs_sharing", "colour dE");
+    std::printf("%-8s %11s %14s %12s %18s %10s %11s %10s\n", "method", "periodicity",
+                "texture_energy", "repeat_scale", "tile_pairs_sharing", "colour dE", "light tail",
+                "dark tail");
     for (const quality::MethodSection& m : page.methods) {
         const auto& j = m.metrics;
         const std::optional<double> periodicity =
             j["periodicity"].is_number() ? std::optional(j["periodicity"].get<double>())
                                          : std::nullopt;
-        std::printf("%-8s %11s %14s %12d %18s %10s\n", m.name.c_str(),
-                    quality::gate_figure(periodicity).c_str(),
-                    quality::gate_figure(j["texture_energy"].get<double>()).c_str(),
-                    j["repeat_scale"].get<int>(),
-                    quality::gate_figure(j["tile_pairs_sharing"].get<double>()).c_str(),
-                    quality::gate_figure(j["colour"]["mean_delta_e2000"].get<double>()).c_str());
+        std::printf(
+            "%-8s %11s %14s %12d %18s %10s %10s%% %9s%%\n", m.name.c_str(),
+            quality::gate_figure(periodicity).c_str(),
+            quality::gate_figure(j["texture_energy"].get<double>()).c_str(),
+            j["repeat_scale"].get<int>(),
+            quality::gate_figure(j["tile_pairs_sharing"].get<double>()).c_str(),
+            quality::gate_figure(j["colour"]["mean_delta_e2000"].get<double>()).c_str(),
+            quality::gate_figure(j["colour"]["light_tail_share"].get<double>() * 100).c_str(),
+            quality::gate_figure(j["colour"]["dark_tail_share"].get<double>() * 100).c_str());
     }
+    std::printf(
+        "(tails: share of the wall beyond the exemplar's lightest and darkest %g %%; "
+        "%g %% each where the wall keeps the stone's extremes)\n",
+        quality::kTailShare * 100, quality::kTailShare * 100);
 }
 
 quality::MethodSection measure(const std::string& name, const std::string& description,
@@ -196,6 +204,8 @@ quality::MethodSection measure(const std::string& name, const std::string& descr
         quality::compare_colour(shared.exemplar_colour, section.colour);
     j["colour"] = {{"mean_delta_e2000", colour.mean_delta_e2000},
                    {"histogram_distance", colour.histogram_distance},
+                   {"light_tail_share", colour.light_tail},
+                   {"dark_tail_share", colour.dark_tail},
                    {"exemplar_mean_lab", lab_json(colour.exemplar_mean)},
                    {"wall_mean_lab", lab_json(colour.wall_mean)}};
     if (shared.production) {

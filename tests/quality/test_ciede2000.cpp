@@ -35,3 +35,36 @@ TEST_CASE("colour match: same pixels give 0, a shifted wall does not", "[quality
     CHECK(shifted.mean_delta_e2000 > 10);
     CHECK(shifted.histogram_distance > 0.2);
 }
+
+// The tails: a wall of the exemplar's pixels holds the exemplar's share beyond its lightest and
+// darkest 5 %; a wall of its calm middle holds none; a wall with a quarter of white pixels holds
+// at least that quarter in the light tail.
+TEST_CASE("lightness tails: the exemplar's own pixels keep 5 %, a calm wall none", "[quality]") {
+    cv::Mat ramp(100, 256, CV_8UC3);  // every grey level equally often
+    for (int y = 0; y < ramp.rows; ++y)
+        for (int x = 0; x < ramp.cols; ++x)
+            ramp.at<cv::Vec3b>(y, x) = cv::Vec3b::all(uint8_t(x));
+    const auto ex = quality::lab_statistics({ramp});
+    const double lo = quality::lightness_quantile(ex, 0.05),
+                 hi = quality::lightness_quantile(ex, 0.95);
+    CHECK(lo < hi);
+    CHECK(quality::share_darker(ex, lo) == Approx(0.05).margin(0.002));
+    CHECK(quality::share_lighter(ex, hi) == Approx(0.05).margin(0.002));
+
+    const auto same = quality::compare_colour(ex, quality::lab_statistics({ramp.clone()}));
+    CHECK(same.light_tail == Approx(quality::kTailShare).margin(0.002));
+    CHECK(same.dark_tail == Approx(quality::kTailShare).margin(0.002));
+
+    const cv::Mat calm = ramp.colRange(64, 192).clone();  // the middle half of the grey levels
+    const auto calm_match = quality::compare_colour(ex, quality::lab_statistics({calm}));
+    CHECK(calm_match.light_tail == 0);
+    CHECK(calm_match.dark_tail == 0);
+    // The mean colour hardly tells the calm wall apart: under a just-noticeable difference.
+    CHECK(calm_match.mean_delta_e2000 < 2.3);
+
+    cv::Mat veined = calm.clone();
+    veined.rowRange(0, veined.rows / 4).setTo(cv::Scalar::all(255));
+    const auto veined_match = quality::compare_colour(ex, quality::lab_statistics({veined}));
+    CHECK(veined_match.light_tail >= 0.25 - 1e-9);
+    CHECK(veined_match.dark_tail == 0);
+}

@@ -56,6 +56,11 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
         CHECK(gamut >= 0);
         CHECK(gamut <= 1);
         CHECK(j["colour"]["soft_proof_delta_e2000"].get<double>() > 0);
+        for (const char* tail : {"light_tail_share", "dark_tail_share"}) {
+            const double share = j["colour"][tail];
+            CHECK(share >= 0);
+            CHECK(share <= 1);
+        }
     }
     // The cell baseline is one 64 px cell image over and over: every window of it recurs, and
     // the only seams it has are unknown.

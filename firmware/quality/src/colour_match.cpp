@@ -18,14 +18,16 @@ int bin(float v, float lo, float hi, int n) {
 struct Partial {
     double sum[3] = {0, 0, 0};
     size_t pixels = 0;
-    std::vector<double> joint, channel[3];
+    std::vector<double> joint, channel[3], lightness;
 };
 
 void accumulate(const cv::Mat& rgb, Partial& p) {
-    constexpr int n = LabStatistics::kBins, m = LabStatistics::kPlotBins;
+    constexpr int n = LabStatistics::kBins, m = LabStatistics::kPlotBins,
+                  fine = LabStatistics::kLightnessBins;
     p.joint.assign(size_t(n * n * n), 0);
     for (auto& c : p.channel)
         c.assign(size_t(m), 0);
+    p.lightness.assign(size_t(fine), 0);
     const cv::Mat lab = synth::detail::to_lab(rgb);
     for (int y = 0; y < lab.rows; ++y) {
         const cv::Vec3f* row = lab.ptr<cv::Vec3f>(y);
@@ -39,6 +41,7 @@ void accumulate(const cv::Mat& rgb, Partial& p) {
             p.channel[0][size_t(bin(v[0], 0, 100, m))] += 1;
             p.channel[1][size_t(bin(v[1], -128, 128, m))] += 1;
             p.channel[2][size_t(bin(v[2], -128, 128, m))] += 1;
+            p.lightness[size_t(bin(v[0], 0, 100, fine))] += 1;
         }
     }
     p.pixels = lab.total();
@@ -47,7 +50,8 @@ void accumulate(const cv::Mat& rgb, Partial& p) {
 }  // namespace
 
 LabStatistics lab_statistics(const std::vector<cv::Mat>& images, int threads) {
-    constexpr int n = LabStatistics::kBins, m = LabStatistics::kPlotBins;
+    constexpr int n = LabStatistics::kBins, m = LabStatistics::kPlotBins,
+                  fine = LabStatistics::kLightnessBins;
     std::vector<Partial> parts(images.size());
     synth::detail::parallel_for(images.size(), threads,
                                 [&](size_t i) { accumulate(images[i], parts[i]); });
@@ -55,6 +59,7 @@ LabStatistics lab_statistics(const std::vector<cv::Mat>& images, int threads) {
     all.joint.assign(size_t(n * n * n), 0);
     for (auto& c : all.channel)
         c.assign(size_t(m), 0);
+    all.lightness.assign(size_t(fine), 0);
     for (const Partial& p : parts) {
         for (int c = 0; c < 3; ++c) {
             all.sum[c] += p.sum[c];
@@ -63,6 +68,8 @@ LabStatistics lab_statistics(const std::vector<cv::Mat>& images, int threads) {
         }
         for (size_t k = 0; k < all.joint.size(); ++k)
             all.joint[k] += p.joint[k];
+        for (size_t k = 0; k < size_t(fine); ++k)
+            all.lightness[k] += p.lightness[k];
         all.pixels += p.pixels;
     }
     LabStatistics s;
@@ -77,7 +84,43 @@ LabStatistics lab_statistics(const std::vector<cv::Mat>& images, int threads) {
         for (double& v : s.channel[size_t(c)])
             v /= count;
     }
+    s.lightness = all.lightness;
+    for (double& v : s.lightness)
+        v /= count;
     return s;
+}
+
+namespace {
+constexpr double kBinWidth = 100.0 / LabStatistics::kLightnessBins;
+}
+
+double lightness_quantile(const LabStatistics& s, double q) {
+    double below = 0;  // share of the pixels in the bins before bin k
+    for (size_t k = 0; k < s.lightness.size(); ++k) {
+        const double in = s.lightness[k];
+        if (in > 0 && below + in >= q)
+            return (double(k) + std::clamp((q - below) / in, 0.0, 1.0)) * kBinWidth;
+        below += in;
+    }
+    return 100;
+}
+
+double share_darker(const LabStatistics& s, double l) {
+    // Pixels spread evenly within a bin: the bin l falls in counts in part.
+    const double at = std::clamp(l / kBinWidth, 0.0, double(s.lightness.size()));
+    const size_t whole = size_t(at);
+    double share = 0;
+    for (size_t k = 0; k < whole; ++k)
+        share += s.lightness[k];
+    if (whole < s.lightness.size()) share += s.lightness[whole] * (at - double(whole));
+    return share;
+}
+
+double share_lighter(const LabStatistics& s, double l) {
+    double total = 0;
+    for (double v : s.lightness)
+        total += v;
+    return std::max(0.0, total - share_darker(s, l));
 }
 
 ColourMatch compare_colour(const LabStatistics& exemplar, const LabStatistics& wall) {
@@ -86,6 +129,8 @@ ColourMatch compare_colour(const LabStatistics& exemplar, const LabStatistics& w
     m.wall_mean = wall.mean;
     m.mean_delta_e2000 = ciede2000(exemplar.mean, wall.mean);
     m.histogram_distance = cv::compareHist(exemplar.joint, wall.joint, cv::HISTCMP_BHATTACHARYYA);
+    m.light_tail = share_lighter(wall, lightness_quantile(exemplar, 1 - kTailShare));
+    m.dark_tail = share_darker(wall, lightness_quantile(exemplar, kTailShare));
     return m;
 }
 

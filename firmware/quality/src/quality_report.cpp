@@ -281,8 +281,8 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
         [](const auto& j) { return j["seam"].is_null() ? j["seam"] : j["seam"]["mean"]; });
     row("seam p99 (vs exemplar)",
         [](const auto& j) { return j["seam"].is_null() ? j["seam"] : j["seam"]["p99"]; });
-    for (const char* key :
-         {"mean_delta_e2000", "histogram_distance", "out_of_gamut_share", "soft_proof_delta_e2000"})
+    for (const char* key : {"mean_delta_e2000", "histogram_distance", "light_tail_share",
+                            "dark_tail_share", "out_of_gamut_share", "soft_proof_delta_e2000"})
         row(std::string("colour ") + key, [&](const auto& j) {
             return j["colour"].contains(key) ? j["colour"][key] : nlohmann::ordered_json();
         });
