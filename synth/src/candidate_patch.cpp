@@ -5,16 +5,12 @@
 #include <opencv2/imgproc/detail/gcgraph.hpp>
 #include <vector>
 
+#include "graph_cut.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
 
 namespace {
-
-constexpr float kForced = 1e9f;
-// Added to every edge so that, where cell image and source agree exactly, the cut still
-// prefers the shortest boundary instead of an arbitrary one.
-constexpr float kEdgeFloor = 1e-3f;
 
 float lab_distance(const cv::Vec3f& a, const cv::Vec3f& b) {
     const cv::Vec3f d = a - b;

@@ -44,7 +44,8 @@ std::vector<uint8_t> inflate_all(const uint8_t* data, size_t size,
     return out;
 }
 
-std::vector<uint8_t> from_png(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+std::vector<uint8_t> profile_from_png(const std::vector<uint8_t>& f,
+                                      const std::filesystem::path& path) {
     std::vector<uint8_t> profile;
     for_each_png_chunk(f, [&](std::string_view type, const uint8_t* data, size_t length) {
         if (type != "iCCP") return false;
@@ -58,7 +59,8 @@ std::vector<uint8_t> from_png(const std::vector<uint8_t>& f, const std::filesyst
     return profile;
 }
 
-std::vector<uint8_t> from_jpeg(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+std::vector<uint8_t> profile_from_jpeg(const std::vector<uint8_t>& f,
+                                       const std::filesystem::path& path) {
     static const char kTag[] = "ICC_PROFILE";  // with its NUL: 12 bytes
     std::map<int, std::vector<uint8_t>> pieces;
     int count = 0;
@@ -79,7 +81,7 @@ std::vector<uint8_t> from_jpeg(const std::vector<uint8_t>& f, const std::filesys
     return out;
 }
 
-std::vector<uint8_t> from_tiff(const std::filesystem::path& path) {
+std::vector<uint8_t> profile_from_tiff(const std::filesystem::path& path) {
     const TiffFile tif = open_tiff(path);
     if (!tif) return {};
     uint32_t size = 0;
@@ -95,14 +97,14 @@ std::vector<uint8_t> read_embedded_profile(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     const std::vector<uint8_t> f((std::istreambuf_iterator<char>(in)),
                                  std::istreambuf_iterator<char>());
-    if (is_tiff(f)) return from_tiff(path);
+    if (is_tiff(f)) return profile_from_tiff(path);
     return parse_embedded_profile(f, path);
 }
 
 std::vector<uint8_t> parse_embedded_profile(const std::vector<uint8_t>& f,
                                             const std::filesystem::path& path) {
-    if (is_png(f)) return from_png(f, path);
-    if (is_jpeg(f)) return from_jpeg(f, path);
+    if (is_png(f)) return profile_from_png(f, path);
+    if (is_jpeg(f)) return profile_from_jpeg(f, path);
     return {};
 }
 

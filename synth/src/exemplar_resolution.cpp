@@ -20,8 +20,6 @@ namespace {
 using namespace detail;
 
 constexpr double kMmPerInch = 25.4;
-// Real scans and photos: 10 to 10 000 pixels per inch (a 0.25 mm grain at 10 000 ppi is 100 px).
-constexpr double kMinDpi = 1, kMaxDpi = 100000;
 
 [[noreturn]] void damaged(const std::filesystem::path& path, const std::string& why) {
     throw SynthError("exemplar '" + path.string() + "': its resolution record is damaged (" + why +
@@ -41,7 +39,8 @@ std::optional<double> square(double x, double y, const std::filesystem::path& pa
     return (x + y) / 2;
 }
 
-std::optional<double> from_png(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+std::optional<double> resolution_from_png(const std::vector<uint8_t>& f,
+                                          const std::filesystem::path& path) {
     std::optional<double> dpi;
     for_each_png_chunk(f, [&](std::string_view type, const uint8_t* d, size_t length) {
         if (type != "pHYs") return false;
@@ -95,7 +94,8 @@ std::optional<double> from_exif(const uint8_t* d, size_t size, const std::filesy
     return square(*x / unit, (y ? *y : *x) / unit, path);
 }
 
-std::optional<double> from_jpeg(const std::vector<uint8_t>& f, const std::filesystem::path& path) {
+std::optional<double> resolution_from_jpeg(const std::vector<uint8_t>& f,
+                                           const std::filesystem::path& path) {
     std::optional<double> jfif, exif;
     for_each_jpeg_segment(f, [&](uint8_t marker, const uint8_t* d, size_t size) {
         if (marker == 0xE0 && size >= 12 && std::memcmp(d, "JFIF\0", 5) == 0) {
@@ -114,7 +114,7 @@ std::optional<double> from_jpeg(const std::vector<uint8_t>& f, const std::filesy
     return jfif ? jfif : exif;
 }
 
-std::optional<double> from_tiff(const std::filesystem::path& path) {
+std::optional<double> resolution_from_tiff(const std::filesystem::path& path) {
     const TiffFile tif = open_tiff(path);
     if (!tif) return std::nullopt;
     float x = 0, y = 0;
@@ -178,9 +178,9 @@ std::optional<cv::Size> read_image_size(const std::filesystem::path& path) {
 
 std::optional<double> read_exemplar_dpi(const std::filesystem::path& path) {
     const std::vector<uint8_t> f = file_head(path);
-    if (is_tiff(f)) return from_tiff(path);
-    if (is_png(f)) return from_png(f, path);
-    if (is_jpeg(f)) return from_jpeg(f, path);
+    if (is_tiff(f)) return resolution_from_tiff(path);
+    if (is_png(f)) return resolution_from_png(f, path);
+    if (is_jpeg(f)) return resolution_from_jpeg(f, path);
     return std::nullopt;
 }
 

@@ -6,15 +6,6 @@
 
 namespace tilejet::synth::detail {
 
-namespace {
-
-constexpr float kForced = 1e9f;
-// Added to every edge so that, where old and new agree exactly, the cut still prefers the
-// shortest boundary instead of an arbitrary one.
-constexpr float kEdgeFloor = 1e-3f;
-
-}  // namespace
-
 Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins) {
     CV_Assert(old_lab.type() == CV_32FC3 && new_lab.type() == CV_32FC3 &&
               old_lab.size() == new_lab.size() && pins.size() == old_lab.total());

@@ -6,6 +6,12 @@
 
 namespace tilejet::synth::detail {
 
+// The terminal weight that pins a pixel to one side of a cut.
+inline constexpr float kForced = 1e9f;
+// Added to every edge so that, where the two images agree exactly, the cut still prefers the
+// shortest boundary instead of an arbitrary one.
+inline constexpr float kEdgeFloor = 1e-3f;
+
 // What a pixel of a graph-cut window must show, or whether the cut decides.
 enum class Pin : uint8_t { Free, New, Old };
 

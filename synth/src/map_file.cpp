@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 
+#include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/internal/diamond.hpp"
 
 namespace tilejet::synth {
@@ -41,8 +42,7 @@ constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30, kMaxRawTotal = uint64_t(1)
 // inflate to 256 MiB each, with valid checksums and id, cost every load 2 GB).
 constexpr std::array<std::string_view, 10> kKnownTags = {"META", "CSET", "PHYS", "SRCE", "CELL",
                                                          "PATA", "PATB", "OVLA", "OVLB", "IDNT"};
-// PHYS: print and exemplar resolutions (pixels per inch), the grain the cell came from (px).
-constexpr double kMinDpi = 1, kMaxDpi = 100000;
+// PHYS: print and exemplar resolutions (kMinDpi..kMaxDpi), the grain the cell came from (px).
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
 constexpr int kMaxVariants = 2;  // the (i + j) mod 2 rule of corner_colours.hpp

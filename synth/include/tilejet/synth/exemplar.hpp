@@ -36,6 +36,10 @@ cv::Mat load_exemplar(const std::filesystem::path& path, const EmbeddedProfileCo
 // or the pixels are not square.
 std::optional<double> read_exemplar_dpi(const std::filesystem::path& path);
 
+// Resolutions a file or a map may claim, pixels per inch: real scans and photos lie between
+// 10 and 10 000; beyond this wider range a figure is damage, not a resolution.
+inline constexpr double kMinDpi = 1, kMaxDpi = 100000;
+
 // The image's width and height as its header gives them (PNG IHDR, JPEG start of frame, TIFF
 // tags), read before anything is decoded; nothing for other files.
 std::optional<cv::Size> read_image_size(const std::filesystem::path& path);
