@@ -44,9 +44,9 @@ const Sampler::Memo& Sampler::memo(CellType type, CellIndex cell) {
     if (!(memo.cell == cell)) {
         const uint64_t key = detail::cell_key(map_.id64(), seed_, 0, type, cell.i, cell.j);
         const PatchSet& set = image_of(cell).set(type);
-        detail::compute_active_set(set, key, memo.active);
+        detail::compute_active_set(set, key, active_);
         memo.shown.clear();
-        for (uint16_t k : memo.active) {
+        for (uint16_t k : active_) {
             const Patch& p = set.patches[k];
             memo.shown.push_back(
                 {p.x, p.y, p.width, p.height, p.row_bytes(), p.bits.data(),

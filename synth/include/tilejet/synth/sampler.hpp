@@ -52,8 +52,7 @@ class Sampler {
     };
     struct Memo {
         CellIndex cell = kNoCell;
-        std::vector<uint16_t> active;
-        std::vector<ShownPatch> shown;  // the active patches, in `active`'s order
+        std::vector<ShownPatch> shown;  // the cell's active patches, in ascending index order
     };
     const Memo& memo(CellType type, CellIndex cell);
     const CellImage& image_of(CellIndex cell) const;
@@ -80,6 +79,7 @@ class Sampler {
     size_t source_step_, source_elem_;
     static constexpr size_t kMemoSlots = 64;  // a 1024 px scan row meets ~20 cells of each type
     Memo memo_[2][kMemoSlots];
+    std::vector<uint16_t> active_;  // scratch of memo(): the active set's indices
 };
 
 // The cell image cell (i, j) shows for this seed: by its corners' colours (corner_colours.hpp).

@@ -20,14 +20,14 @@ struct MaskRun {
     uint16_t length;
 };
 
-// One graph-cut patch: a binary mask placed in cell coordinates (relative to the origin of the
-// cell it is shown in; it may hang over the cell's edge but never leaves the cell's diamond)
-// and the source pixel that the mask's top-left corner copies.
 // Bit (px, py) of a row-major mask of one bit per pixel whose rows are `row_bytes` long.
 inline bool mask_bit(const uint8_t* bits, int row_bytes, int64_t px, int64_t py) {
     return (bits[size_t(py) * size_t(row_bytes) + size_t(px >> 3)] >> (px & 7)) & 1;
 }
 
+// One graph-cut patch: a binary mask placed in cell coordinates (relative to the origin of the
+// cell it is shown in; it may hang over the cell's edge but never leaves the cell's diamond)
+// and the source pixel that the mask's top-left corner copies.
 struct Patch {
     int x = 0, y = 0;           // bounding box top-left, cell coordinates
     int width = 0, height = 0;  // bounding box size
