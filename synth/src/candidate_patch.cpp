@@ -2,22 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc/detail/gcgraph.hpp>
 #include <vector>
 
 #include "graph_cut.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 
 namespace tilejet::synth::detail {
-
-namespace {
-
-float lab_distance(const cv::Vec3f& a, const cv::Vec3f& b) {
-    const cv::Vec3f d = a - b;
-    return std::sqrt(d.dot(d));
-}
-
-}  // namespace
 
 std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) {
     Rng rng(seed);
@@ -83,45 +73,28 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     }
     if (qx < 0) return std::nullopt;
 
-    // Per-pixel disagreement between what the plane shows and the source under the window.
-    std::vector<float> diff(static_cast<size_t>(side) * side);
-    for (int dy = -R; dy <= R; ++dy)
-        for (int dx = -R; dx <= R; ++dx)
-            diff[size_t(dy + R) * side + size_t(dx + R)] =
-                lab_distance(canvas.at<cv::Vec3f>(corner.y + dy + R, corner.x + dx + R),
-                             src.at<cv::Vec3f>(qy + dy, qx + dx));
-    auto node = [side](int x, int y) { return y * side + x; };
-    auto weight = [&](int a, int b) { return diff[size_t(a)] + diff[size_t(b)] + kEdgeFloor; };
-
-    // GCGraph cannot be cleared for reuse, so every candidate gets its own.
-    cv::detail::GCGraph<float> graph(unsigned(side * side), unsigned(2 * 2 * side * side));
-    for (int i = 0; i < side * side; ++i)
-        graph.addVtx();
+    // The cut between "keep the plane" (the rim, and wherever a patch may not reach) and "take
+    // the source" (the core).
+    std::vector<Pin> pins(static_cast<size_t>(side) * side, Pin::Free);
     for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x) {
-            const int n = node(x, y);
-            if (x + 1 < side) {
-                const float w = weight(n, node(x + 1, y));
-                graph.addEdges(n, node(x + 1, y), w, w);
-            }
-            if (y + 1 < side) {
-                const float w = weight(n, node(x, y + 1));
-                graph.addEdges(n, node(x, y + 1), w, w);
-            }
             const int dx = x - R, dy = y - R;
             const bool rim = x == 0 || y == 0 || x == side - 1 || y == side - 1;
+            Pin& pin = pins[size_t(y) * size_t(side) + size_t(x)];
             if (rim || !allowed(px + dx, py + dy))
-                graph.addTermWeights(n, 0, kForced);
+                pin = Pin::Old;
             else if (std::abs(dx) <= core && std::abs(dy) <= core)
-                graph.addTermWeights(n, kForced, 0);
+                pin = Pin::New;
         }
-    graph.maxFlow();
-
-    std::vector<uint8_t> in(static_cast<size_t>(side) * side);
+    const Cut cut = min_cut(canvas(cv::Rect(corner, cv::Size(side, side))),
+                            src(cv::Rect(qx - R, qy - R, side, side)), pins);
+    const auto in = [&](int x, int y) {
+        return cut.take_new[size_t(y) * size_t(side) + size_t(x)];
+    };
     int x0 = side, y0 = side, x1 = -1, y1 = -1;
     for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x)
-            if ((in[size_t(node(x, y))] = graph.inSourceSegment(node(x, y)) ? 1 : 0)) {
+            if (in(x, y)) {
                 x0 = std::min(x0, x), x1 = std::max(x1, x);
                 y0 = std::min(y0, y), y1 = std::max(y1, y);
             }
@@ -132,24 +105,12 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     p.src_x = qx - R + x0, p.src_y = qy - R + y0;
     p.width = x1 - x0 + 1, p.height = y1 - y0 + 1;
     p.bits.assign(size_t(p.height) * size_t(p.row_bytes()), 0);
-    float seam = 0;
-    double seam_sum = 0;
-    size_t seam_edges = 0;
     for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-            const int n = node(x, y);
-            if (!in[size_t(n)]) continue;
-            p.bits[size_t(y - y0) * size_t(p.row_bytes()) + size_t((x - x0) >> 3)] |=
-                uint8_t(1u << ((x - x0) & 7));
-            const int nb[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
-            for (const auto& q : nb)  // the rim is never in, so neighbours exist
-                if (!in[size_t(node(q[0], q[1]))]) {
-                    const float w = weight(n, node(q[0], q[1]));
-                    seam = std::max(seam, w), seam_sum += w, ++seam_edges;
-                }
-        }
-    p.seam_cost =
-        space.mean_seam_cost ? float(seam_sum / double(std::max<size_t>(1, seam_edges))) : seam;
+        for (int x = x0; x <= x1; ++x)
+            if (in(x, y))
+                p.bits[size_t(y - y0) * size_t(p.row_bytes()) + size_t((x - x0) >> 3)] |=
+                    uint8_t(1u << ((x - x0) & 7));
+    p.seam_cost = space.mean_seam_cost ? float(cut.mean_cost) : cut.max_cost;
     p.derive_runs();
     return p;
 }

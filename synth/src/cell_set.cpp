@@ -1,7 +1,6 @@
 #include "cell_set.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <opencv2/imgproc.hpp>
 
 #include "graph_cut.hpp"
@@ -380,12 +379,16 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                                   : 0.0;
     };
     std::vector<cv::Point> candidates;
+    std::vector<double> conspicuous;  // conspicuous_in of each candidate
     if (cv::countNonZero(mask) > 0)
         for (int tries = canvas.conspicuous ? kConspicuousWindows : 1; tries > 0; --tries) {
             const auto more = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
-            candidates.insert(candidates.end(), more.begin(), more.end());
-            if (std::ranges::any_of(more, [&](cv::Point c) { return conspicuous_in(c) == 0; }))
-                break;
+            bool calm = false;
+            for (const cv::Point c : more) {
+                candidates.push_back(c), conspicuous.push_back(conspicuous_in(c));
+                calm |= conspicuous.back() == 0;
+            }
+            if (calm) break;
         }
     if (candidates.empty()) {  // nothing to match yet (or no lattice offset fits): anywhere
         cv::Point corner(rng.range(0, source_lab.cols - rect.width),
@@ -395,7 +398,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 rect.tl() + origin + lattice->nearest(cv::Point2d(corner - rect.tl() - origin));
         corner.x = std::clamp(corner.x, 0, source_lab.cols - rect.width);
         corner.y = std::clamp(corner.y, 0, source_lab.rows - rect.height);
-        candidates.push_back(corner);
+        candidates.push_back(corner), conspicuous.push_back(conspicuous_in(corner));
     }
     std::vector<Pin> pins(size_t(rect.area()));
     for (int y = 0; y < rect.height; ++y)
@@ -412,14 +415,12 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // The best-matching windows, judged by the seam their cut would leave (what shows, and what
     // texture energy counts), not by the overlap's mean difference alone; of those with nothing
     // conspicuous, else of the least conspicuous (a better seam is no reason to repeat a vein).
-    double least_conspicuous = std::numeric_limits<double>::infinity();
-    for (const cv::Point& corner : candidates)
-        least_conspicuous = std::min(least_conspicuous, conspicuous_in(corner));
+    const double least_conspicuous = std::ranges::min(conspicuous);
     Cut cut;
     cv::Rect from;
-    for (const cv::Point& corner : candidates) {
-        if (conspicuous_in(corner) > least_conspicuous) continue;
-        const cv::Rect window(corner, rect.size());
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        if (conspicuous[i] > least_conspicuous) continue;
+        const cv::Rect window(candidates[i], rect.size());
         Cut c = min_cut(canvas.lab(rect), source_lab(window), pins);
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
     }

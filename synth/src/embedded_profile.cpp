@@ -16,7 +16,7 @@ namespace tilejet::synth::detail {
 
 namespace {
 
-[[noreturn]] void damaged(const std::filesystem::path& path, const std::string& why) {
+[[noreturn]] void damaged_profile(const std::filesystem::path& path, const std::string& why) {
     throw SynthError("exemplar '" + path.string() + "': embedded ICC profile is damaged (" + why +
                      ")");
 }
@@ -25,14 +25,14 @@ std::vector<uint8_t> inflate_all(const uint8_t* data, size_t size,
                                  const std::filesystem::path& path) {
     constexpr size_t kMaxProfile = 16u << 20;  // real profiles are kilobytes to a few MB
     z_stream z{};
-    if (inflateInit(&z) != Z_OK) damaged(path, "zlib");
+    if (inflateInit(&z) != Z_OK) damaged_profile(path, "zlib");
     std::unique_ptr<z_stream, decltype(&inflateEnd)> guard(&z, inflateEnd);
     z.next_in = const_cast<Bytef*>(data);
     z.avail_in = uInt(size);
     std::vector<uint8_t> out;
     int status = Z_OK;
     while (status == Z_OK) {
-        if (out.size() >= kMaxProfile) damaged(path, "larger than 16 MB");
+        if (out.size() >= kMaxProfile) damaged_profile(path, "larger than 16 MB");
         const size_t before = out.size();
         out.resize(before + 65536);
         z.next_out = out.data() + before;
@@ -40,7 +40,7 @@ std::vector<uint8_t> inflate_all(const uint8_t* data, size_t size,
         status = inflate(&z, Z_NO_FLUSH);
         out.resize(before + (65536 - z.avail_out));
     }
-    if (status != Z_STREAM_END) damaged(path, "the compressed data does not inflate");
+    if (status != Z_STREAM_END) damaged_profile(path, "the compressed data does not inflate");
     return out;
 }
 
@@ -50,9 +50,10 @@ std::vector<uint8_t> profile_from_png(const std::vector<uint8_t>& f,
     for_each_png_chunk(f, [&](std::string_view type, const uint8_t* data, size_t length) {
         if (type != "iCCP") return false;
         const void* nul = std::memchr(data, 0, std::min<size_t>(length, 80));
-        if (!nul) damaged(path, "iCCP chunk without a profile name");
+        if (!nul) damaged_profile(path, "iCCP chunk without a profile name");
         const size_t name = size_t(static_cast<const uint8_t*>(nul) - data);
-        if (name + 2 > length || data[name + 1] != 0) damaged(path, "unknown iCCP compression");
+        if (name + 2 > length || data[name + 1] != 0)
+            damaged_profile(path, "unknown iCCP compression");
         profile = inflate_all(data + name + 2, length - name - 2, path);
         return true;
     });
@@ -67,14 +68,15 @@ std::vector<uint8_t> profile_from_jpeg(const std::vector<uint8_t>& f,
     for_each_jpeg_segment(f, [&](uint8_t marker, const uint8_t* data, size_t size) {
         if (marker == 0xE2 && size > 14 && std::memcmp(data, kTag, 12) == 0) {
             const int seq = data[12], total = data[13];
-            if (seq < 1 || seq > total || (count && total != count)) damaged(path, "APP2 sequence");
+            if (seq < 1 || seq > total || (count && total != count))
+                damaged_profile(path, "APP2 sequence");
             count = total;
             pieces[seq].assign(data + 14, data + size);
         }
         return false;
     });
     if (pieces.empty()) return {};
-    if (int(pieces.size()) != count) damaged(path, "missing APP2 ICC segments");
+    if (int(pieces.size()) != count) damaged_profile(path, "missing APP2 ICC segments");
     std::vector<uint8_t> out;
     for (auto& [seq, bytes] : pieces)
         out.insert(out.end(), bytes.begin(), bytes.end());

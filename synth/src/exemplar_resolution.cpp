@@ -21,7 +21,7 @@ using namespace detail;
 
 constexpr double kMmPerInch = 25.4;
 
-[[noreturn]] void damaged(const std::filesystem::path& path, const std::string& why) {
+[[noreturn]] void damaged_resolution(const std::filesystem::path& path, const std::string& why) {
     throw SynthError("exemplar '" + path.string() + "': its resolution record is damaged (" + why +
                      "); give the resolution with --exemplar-dpi");
 }
@@ -30,8 +30,8 @@ constexpr double kMmPerInch = 25.4;
 std::optional<double> square(double x, double y, const std::filesystem::path& path) {
     if (!std::isfinite(x) || !std::isfinite(y) || x < kMinDpi || y < kMinDpi || x > kMaxDpi ||
         y > kMaxDpi)
-        damaged(path, "resolution " + std::to_string(x) + " x " + std::to_string(y) +
-                          " ppi is out of range");
+        damaged_resolution(path, "resolution " + std::to_string(x) + " x " + std::to_string(y) +
+                                     " ppi is out of range");
     if (std::abs(x - y) > 0.01 * std::max(x, y))
         throw SynthError("exemplar '" + path.string() + "' has pixels that are not square (" +
                          std::to_string(x) + " x " + std::to_string(y) +
@@ -44,9 +44,10 @@ std::optional<double> resolution_from_png(const std::vector<uint8_t>& f,
     std::optional<double> dpi;
     for_each_png_chunk(f, [&](std::string_view type, const uint8_t* d, size_t length) {
         if (type != "pHYs") return false;
-        if (length != 9) damaged(path, "pHYs chunk of " + std::to_string(length) + " bytes");
+        if (length != 9)
+            damaged_resolution(path, "pHYs chunk of " + std::to_string(length) + " bytes");
         if (d[8] == 0) return true;  // an aspect ratio only
-        if (d[8] != 1) damaged(path, "pHYs unit " + std::to_string(d[8]));
+        if (d[8] != 1) damaged_resolution(path, "pHYs unit " + std::to_string(d[8]));
         // Pixels per metre, whole: 300 dpi is stored as 11811 and reads 299.9994. A hundredth
         // of a dpi is far below what the metre's rounding can say.
         auto per_inch = [](uint32_t ppm) { return std::round(ppm * kMmPerInch / 10) / 100; };
@@ -59,11 +60,11 @@ std::optional<double> resolution_from_png(const std::vector<uint8_t>& f,
 // Exif: a TIFF structure after "Exif\0\0"; XResolution (282, RATIONAL) and ResolutionUnit (296,
 // SHORT: 2 inch, the default, 3 cm) in the first image directory.
 std::optional<double> from_exif(const uint8_t* d, size_t size, const std::filesystem::path& path) {
-    if (size < 8) damaged(path, "Exif header");
+    if (size < 8) damaged_resolution(path, "Exif header");
     const bool little = d[0] == 'I' && d[1] == 'I';
-    if (!little && !(d[0] == 'M' && d[1] == 'M')) damaged(path, "Exif byte order");
+    if (!little && !(d[0] == 'M' && d[1] == 'M')) damaged_resolution(path, "Exif byte order");
     auto u16 = [&](size_t at) -> uint32_t {
-        if (at + 2 > size) damaged(path, "Exif directory runs past its segment");
+        if (at + 2 > size) damaged_resolution(path, "Exif directory runs past its segment");
         return little ? uint32_t(d[at]) | uint32_t(d[at + 1]) << 8
                       : uint32_t(d[at]) << 8 | uint32_t(d[at + 1]);
     };
@@ -78,15 +79,16 @@ std::optional<double> from_exif(const uint8_t* d, size_t size, const std::filesy
         const size_t e = ifd + 2 + size_t(i) * 12;
         const uint32_t tag = u16(e), type = u16(e + 2);
         if (tag == 282 || tag == 283) {
-            if (type != 5) damaged(path, "Exif resolution is not a rational");
+            if (type != 5) damaged_resolution(path, "Exif resolution is not a rational");
             const size_t at = u32(e + 8);
             const double den = u32(at + 4);
-            if (den == 0) damaged(path, "Exif resolution with a zero denominator");
+            if (den == 0) damaged_resolution(path, "Exif resolution with a zero denominator");
             (tag == 282 ? x : y) = u32(at) / den;
         } else if (tag == 296) {
             const uint32_t u = u16(e + 8);
             if (u == 1) return std::nullopt;  // no absolute unit
-            if (u != 2 && u != 3) damaged(path, "Exif resolution unit " + std::to_string(u));
+            if (u != 2 && u != 3)
+                damaged_resolution(path, "Exif resolution unit " + std::to_string(u));
             unit = u == 3 ? 1 / 2.54 : 1;
         }
     }
@@ -104,7 +106,7 @@ std::optional<double> resolution_from_jpeg(const std::vector<uint8_t>& f,
             // Unit 0 is an aspect ratio: what JFIF writers put when they know no resolution.
             if (unit == 1) jfif = square(x, y, path);
             if (unit == 2) jfif = square(x * 2.54, y * 2.54, path);
-            if (unit > 2) damaged(path, "JFIF density unit " + std::to_string(unit));
+            if (unit > 2) damaged_resolution(path, "JFIF density unit " + std::to_string(unit));
             if (jfif) return true;
         }
         if (marker == 0xE1 && size >= 6 && std::memcmp(d, "Exif\0\0", 6) == 0 && !exif)

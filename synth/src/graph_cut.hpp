@@ -17,15 +17,30 @@ enum class Pin : uint8_t { Free, New, Old };
 
 struct Cut {
     std::vector<uint8_t> take_new;  // per window pixel, row-major: 1 where the new image shows
+    double total_cost = 0;          // the cut's cost: what max-flow minimises
     double mean_cost = 0;           // mean edge cost along the cut
     float max_cost = 0;             // largest single edge cost along the cut
     size_t taken = 0;               // pixels that show the new image
 };
 
+// Windows at least this many pixels on their shorter side are cut coarse to fine (graph_cut.cpp).
+inline constexpr int kBandedCutSide = 192;
+
+enum class CutLevels : uint8_t {
+    Auto,   // coarse to fine from kBandedCutSide px
+    Whole,  // every pixel a node of one max-flow: the exact minimum, slow on large windows
+};
+
+// |old - new| per pixel, row-major: CIELab CV_32FC3 images of one size.
+std::vector<float> lab_difference(const cv::Mat& old_lab, const cv::Mat& new_lab);
+
 // The min-cut (Boykov-Kolmogorov max-flow, OpenCV's GCGraph) between an old and a new image of
 // the same window, CIELab CV_32FC3 both (Kwatra et al. 2003): the edge between neighbours s, t
 // costs |old(s) - new(s)| + |old(t) - new(t)|, so the seam runs where the two agree.
-// `pins` (one per pixel, row-major) force pixels to either side.
-Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins);
+// `pins` (one per pixel, row-major) force pixels to either side. Windows of kBandedCutSide px
+// and more are cut at half resolution first and refined in a band around that cut: close to
+// the exact cut, not always equal to it.
+Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins,
+            CutLevels levels = CutLevels::Auto);
 
 }  // namespace tilejet::synth::detail
