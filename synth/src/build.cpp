@@ -350,9 +350,14 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         const double enlargement =
             params.dpi > 0 && params.exemplar_dpi > 0 ? params.dpi / params.exemplar_dpi : 1;
         const int feather = enlargement >= 2 ? int(enlargement) : 0;
+        // Its large cuts coarse to fine: a soft source loses nothing at half resolution. Sharp
+        // ones are cut exactly: on the corpus, at their own resolution, coarse-to-fine cuts
+        // from 192 px (cell blocks of 256 px cells, their largest patches) cost 1 to 7 % of
+        // texture energy on ten designs of eleven (docs/design.md section 2.4).
+        const CutLevels cuts = enlargement >= 2 ? CutLevels::Auto : CutLevels::Whole;
         const CellSet set(map.source, source_lab,
                           {cell_size, corner_colours, params.variants, params.seed, threads,
-                           lattice ? &*lattice : nullptr, feather});
+                           lattice ? &*lattice : nullptr, feather, cuts});
         map.corner_colours = corner_colours, map.variants = set.variants();
         // Patches as large as a third of the cell where their seams are good: the size classes
         // of best_candidates keep the large ones that fit.
@@ -371,7 +376,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                                        lattice ? &*lattice : nullptr,
                                        [&set](int x, int y) { return set.may_hold_patch(x, y); },
                                        true,
-                                       kOffsetDrawsInSet};
+                                       kOffsetDrawsInSet,
+                                       cuts};
             BuildParams per_image = params;
             per_image.seed = hash_combine(params.seed, m);
             make_patch_sets(image, space, per_image, patches, candidates, active_per_cell, threads,

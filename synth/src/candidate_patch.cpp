@@ -87,7 +87,7 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
                 pin = Pin::New;
         }
     const Cut cut = min_cut(canvas(cv::Rect(corner, cv::Size(side, side))),
-                            src(cv::Rect(qx - R, qy - R, side, side)), pins);
+                            src(cv::Rect(qx - R, qy - R, side, side)), pins, space.cuts);
     const auto in = [&](int x, int y) {
         return cut.take_new[size_t(y) * size_t(side) + size_t(x)];
     };

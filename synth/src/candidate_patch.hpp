@@ -5,6 +5,7 @@
 #include <opencv2/core/mat.hpp>
 #include <optional>
 
+#include "graph_cut.hpp"
 #include "lattice_alignment.hpp"
 #include "tilejet/synth/internal/diamond.hpp"
 #include "tilejet/synth/texture_map.hpp"
@@ -35,6 +36,7 @@ struct CandidateSpace {
     // the cut runs is cut: 1 for the plain random draw of the Kolář method. A random source
     // disagrees with the plane all around, and its cut hugs the forced core.
     int offset_draws = 1;
+    CutLevels cuts = CutLevels::Whole;  // as CellSetParams::cuts
 };
 
 // Candidate number `seed` (docs/design.md section 2.4): a random cell position p, source position q

@@ -81,7 +81,8 @@ struct Canvas {
     const cv::Mat* conspicuous_uses = nullptr;
     // Large cells: the block search looks at twice the block (kSearchWindow).
     bool wide_search = false;
-    int feather = 0;  // CellSetParams::seam_feather
+    int feather = 0;                    // CellSetParams::seam_feather
+    CutLevels cuts = CutLevels::Whole;  // CellSetParams::cuts
 
     explicit Canvas(cv::Size size)
         : rgb(size, CV_8UC3, cv::Scalar::all(0)),
@@ -421,7 +422,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     for (size_t i = 0; i < candidates.size(); ++i) {
         if (conspicuous[i] > least_conspicuous) continue;
         const cv::Rect window(candidates[i], rect.size());
-        Cut c = min_cut(canvas.lab(rect), source_lab(window), pins);
+        Cut c = min_cut(canvas.lab(rect), source_lab(window), pins, canvas.cuts);
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
     }
     canvas.placed.push_back({rect, from.tl()});
@@ -516,6 +517,7 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
     Rng rng(hash_combine(hash_combine(params_.seed, kStripStream),
                          uint64_t(horizontal) * 65536 + uint64_t(a) * uint64_t(k_) + b));
     canvas.feather = params_.seam_feather;
+    canvas.cuts = params_.cuts;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {
@@ -566,7 +568,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
                     else
                         pin = Pin::Free;
                 }
-            const Cut cut = min_cut(h_lab(corner), v_lab(corner), pins);
+            const Cut cut = min_cut(h_lab(corner), v_lab(corner), pins, params_.cuts);
             // Blended like every other cut: inside the core the two strips agree, and the cut
             // left it along the core's side as a hard line at every vertex (the demo design
             // at 360 dpi). The pinned edges keep their strips exactly.
@@ -586,6 +588,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     canvas.locked(cv::Rect(1, 1, cw_ - 2, ch_ - 2)).setTo(0);
     canvas.avoid = &avoid;
     canvas.feather = params_.seam_feather;
+    canvas.cuts = params_.cuts;
     canvas.usage = &usage;
     canvas.usage_weight = usage_weight_;
     if (large_) {

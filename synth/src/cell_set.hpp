@@ -23,6 +23,7 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
+#include "graph_cut.hpp"
 #include "lattice_alignment.hpp"
 
 namespace tilejet::synth::detail {
@@ -51,6 +52,9 @@ struct CellSetParams {
     // shows as a straight hard line; blended over about f px it is as soft as the stone. 0: cuts
     // stay hard (exemplars at their own resolution, whose grain is as sharp as a cut).
     int seam_feather = 0;
+    // Whole: every cut exact. Auto, for enlarged exemplars: large windows cut coarse to fine
+    // (graph_cut.hpp), which loses nothing on a source with nothing sharper than a few px.
+    CutLevels cuts = CutLevels::Whole;
 };
 
 class CellSet {

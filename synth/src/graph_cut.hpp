@@ -41,6 +41,6 @@ std::vector<float> lab_difference(const cv::Mat& old_lab, const cv::Mat& new_lab
 // and more are cut at half resolution first and refined in a band around that cut: close to
 // the exact cut, not always equal to it.
 Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins,
-            CutLevels levels = CutLevels::Auto);
+            CutLevels levels);
 
 }  // namespace tilejet::synth::detail

@@ -47,7 +47,7 @@ void check_pins_kept(const Cut& cut, const std::vector<Pin>& pins) {
 TEST_CASE("a large window's coarse-to-fine cut keeps every pin", "[graph_cut]") {
     const cv::Size size(kBandedCutSide * 3 + 1, kBandedCutSide * 2 + 3);  // odd sides
     const auto pins = core_and_rim(size, 30);
-    const Cut cut = min_cut(soft_lab(size, 4, 1), soft_lab(size, 4, 2), pins);
+    const Cut cut = min_cut(soft_lab(size, 4, 1), soft_lab(size, 4, 2), pins, CutLevels::Auto);
     check_pins_kept(cut, pins);
     CHECK(cut.taken > 61 * 61);
     CHECK(cut.taken < size_t(size.area()));
@@ -68,7 +68,7 @@ TEST_CASE("the coarse-to-fine cut follows a two-pixel valley where the images ag
         }
     const auto pins = core_and_rim(size, 40);
     const Cut exact = min_cut(old_lab, new_lab, pins, CutLevels::Whole);
-    const Cut banded = min_cut(old_lab, new_lab, pins);
+    const Cut banded = min_cut(old_lab, new_lab, pins, CutLevels::Auto);
     check_pins_kept(banded, pins);
     // Along the valley an edge costs only the floor; anywhere else it costs twice the distance.
     CHECK(exact.max_cost < 1e-2f);
@@ -88,7 +88,7 @@ TEST_CASE("the coarse-to-fine cut costs close to the exact minimum", "[graph_cut
         const cv::Mat old_lab = soft_lab(size, blur, 10 + seed),
                       new_lab = soft_lab(size, blur, 20 + seed);
         const Cut exact = min_cut(old_lab, new_lab, pins, CutLevels::Whole);
-        const Cut banded = min_cut(old_lab, new_lab, pins);
+        const Cut banded = min_cut(old_lab, new_lab, pins, CutLevels::Auto);
         INFO("seed " << seed << ": exact " << exact.total_cost << ", banded " << banded.total_cost);
         CHECK(banded.total_cost >= exact.total_cost * (1 - 1e-6));
         CHECK(banded.total_cost <= exact.total_cost * 1.10);
@@ -100,6 +100,6 @@ TEST_CASE("a small window is cut exactly", "[graph_cut]") {
     const auto pins = core_and_rim(size, 12);
     const cv::Mat old_lab = soft_lab(size, 2, 5), new_lab = soft_lab(size, 2, 6);
     const Cut exact = min_cut(old_lab, new_lab, pins, CutLevels::Whole);
-    const Cut cut = min_cut(old_lab, new_lab, pins);
+    const Cut cut = min_cut(old_lab, new_lab, pins, CutLevels::Auto);
     CHECK(cut.take_new == exact.take_new);
 }
