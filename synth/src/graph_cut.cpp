@@ -41,7 +41,7 @@ std::vector<uint8_t> cut_levels(const std::vector<float>& diff, int w, int h,
                                 const std::vector<Pin>& pins);
 
 // The multilevel banded cut (Lombaert et al. 2005): the cut of the window at half resolution,
-// then the full-resolution cut within two coarse pixels of where that one runs, everything
+// then the full-resolution cut within kBand coarse pixels of where that one runs, everything
 // farther pinned to the side the coarse cut gave it. Max-flow grows with the area of the
 // window; the band grows with the length of the seam.
 std::vector<uint8_t> cut_banded(const std::vector<float>& diff, int w, int h,
