@@ -9,10 +9,29 @@ namespace tilejet::synth::detail {
 
 namespace {
 
+// |old - new| per pixel, row-major: CIELab CV_32FC3 images of one size.
+std::vector<float> lab_difference(const cv::Mat& old_lab, const cv::Mat& new_lab) {
+    CV_Assert(old_lab.type() == CV_32FC3 && new_lab.type() == CV_32FC3 &&
+              old_lab.size() == new_lab.size());
+    const int w = old_lab.cols, h = old_lab.rows;
+    std::vector<float> diff(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const cv::Vec3f d = old_lab.at<cv::Vec3f>(y, x) - new_lab.at<cv::Vec3f>(y, x);
+            diff[size_t(y) * size_t(w) + size_t(x)] = std::sqrt(d.dot(d));
+        }
+    return diff;
+}
+
+// The cost of the edge between neighbouring pixels a and b (graph_cut.hpp).
+float edge_cost(const std::vector<float>& diff, size_t a, size_t b) {
+    return diff[a] + diff[b] + kEdgeFloor;
+}
+
 // The cut's side of each pixel (1: new) on the full grid, every pixel a node.
 std::vector<uint8_t> cut_whole(const std::vector<float>& diff, int w, int h,
                                const std::vector<Pin>& pins) {
-    auto weight = [&](size_t a, size_t b) { return diff[a] + diff[b] + kEdgeFloor; };
+    auto weight = [&](size_t a, size_t b) { return edge_cost(diff, a, b); };
     cv::detail::GCGraph<float> graph(unsigned(w * h), unsigned(4 * w * h));
     for (int i = 0; i < w * h; ++i)
         graph.addVtx();
@@ -103,7 +122,7 @@ std::vector<uint8_t> cut_banded(const std::vector<float>& diff, int w, int h,
             if (near_cut[c] && pins[n] == Pin::Free) node[n] = nodes++;
         }
     if (nodes == 0) return take_new;
-    auto weight = [&](size_t a, size_t b) { return diff[a] + diff[b] + kEdgeFloor; };
+    auto weight = [&](size_t a, size_t b) { return edge_cost(diff, a, b); };
     cv::detail::GCGraph<float> graph(unsigned(nodes), unsigned(4 * nodes));
     for (int i = 0; i < nodes; ++i)
         graph.addVtx();
@@ -140,25 +159,12 @@ std::vector<uint8_t> cut_levels(const std::vector<float>& diff, int w, int h,
 
 }  // namespace
 
-std::vector<float> lab_difference(const cv::Mat& old_lab, const cv::Mat& new_lab) {
-    CV_Assert(old_lab.type() == CV_32FC3 && new_lab.type() == CV_32FC3 &&
-              old_lab.size() == new_lab.size());
-    const int w = old_lab.cols, h = old_lab.rows;
-    std::vector<float> diff(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const cv::Vec3f d = old_lab.at<cv::Vec3f>(y, x) - new_lab.at<cv::Vec3f>(y, x);
-            diff[size_t(y) * size_t(w) + size_t(x)] = std::sqrt(d.dot(d));
-        }
-    return diff;
-}
-
 Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pin>& pins,
             CutLevels levels) {
     CV_Assert(pins.size() == old_lab.total());
     const int w = old_lab.cols, h = old_lab.rows;
     const std::vector<float> diff = lab_difference(old_lab, new_lab);
-    auto weight = [&](size_t a, size_t b) { return diff[a] + diff[b] + kEdgeFloor; };
+    auto weight = [&](size_t a, size_t b) { return edge_cost(diff, a, b); };
 
     Cut cut;
     cut.take_new =

@@ -31,9 +31,6 @@ enum class CutLevels : uint8_t {
     Whole,  // every pixel a node of one max-flow: the exact minimum, slow on large windows
 };
 
-// |old - new| per pixel, row-major: CIELab CV_32FC3 images of one size.
-std::vector<float> lab_difference(const cv::Mat& old_lab, const cv::Mat& new_lab);
-
 // The min-cut (Boykov-Kolmogorov max-flow, OpenCV's GCGraph) between an old and a new image of
 // the same window, CIELab CV_32FC3 both (Kwatra et al. 2003): the edge between neighbours s, t
 // costs |old(s) - new(s)| + |old(t) - new(t)|, so the seam runs where the two agree.
