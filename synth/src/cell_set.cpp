@@ -61,6 +61,12 @@ constexpr int kConspicuousWindows = 4;
 // to 1.5: strips from its few calm places, alike at every fourth edge), and those designs showed no
 // repeated feature.
 constexpr int kLargeCell = 320;
+// A corner's core shows whole at every vertex of its colour, half of all vertices with K = 2:
+// on marble at map seed 4 a white fleck in one core stood at every other vertex, a grid of
+// dots plain at a glance. Its pixels, one by one, should stay within this many standard
+// deviations (squared) of the source's mean colour: the blurred measure of large cells averages
+// a fleck of a few pixels away.
+constexpr double kCoreZ2 = 4.0;
 
 // A canvas being quilted: what is there (R,G,B and CIELab) and which pixels are known.
 struct Canvas {
@@ -167,6 +173,14 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     cv::Scalar mean, deviation;
     cv::meanStdDev(source_lab, mean, deviation);
     const double variance = deviation.dot(deviation);
+    // Squared CIELab distance from the mean, in units of the source's variance, pixel by pixel.
+    cv::Mat z2;
+    {
+        cv::Mat difference = source_lab - mean;
+        std::vector<cv::Mat> channels;
+        cv::split(difference.mul(difference), channels);
+        z2 = (channels[0] + channels[1] + channels[2]) / variance;
+    }
     usage_weight_ = kUsageCost * variance;
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
     // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
@@ -175,17 +189,14 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
     large_ = side > kLargeCell && reuse >= 1;
     if (large_) {
-        // Squared CIELab distance from the mean, less what is still typical, in units of the
-        // source's variance, times that variance: a match cost per pixel.
-        cv::Mat difference = source_lab - mean;
-        std::vector<cv::Mat> channels;
-        cv::split(difference.mul(difference), channels);
-        cv::Mat z2 = (channels[0] + channels[1] + channels[2]) / variance;
-        cv::GaussianBlur(z2, z2, {0, 0}, std::max(1.0, side / 16.0));
-        conspicuous_ = cv::max(z2 - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
+        // The same over a sixteenth of the cell, less what is still typical, times the variance:
+        // a match cost per pixel.
+        cv::Mat blurred;
+        cv::GaussianBlur(z2, blurred, {0, 0}, std::max(1.0, side / 16.0));
+        conspicuous_ = cv::max(blurred - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
         if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
     }
-    choose_corner_blocks();
+    choose_corner_blocks(z2);
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
     cv::Mat usage(source_lab.size(), CV_32F, cv::Scalar(0));
@@ -455,11 +466,15 @@ void quilt_area(Canvas& canvas, const cv::Rect& area, cv::Size block, int overla
 
 }  // namespace
 
-void CellSet::choose_corner_blocks() {
+void CellSet::choose_corner_blocks(const cv::Mat& source_z2) {
     // Spread over the source: each the farthest of a few random draws from those taken, among
     // the draws with nothing conspicuous (else the least conspicuous): a core shows whole at
     // every vertex of its colour, and the demo design's dark cores drew a dot at every other
-    // vertex.
+    // vertex. Conspicuous: for large cells as their blocks see it (conspicuous_), else any
+    // pixel beyond kCoreZ2; on a lattice the vertex is a grout crossing, the design.
+    cv::Mat pixel_excess;
+    if (conspicuous_.empty() && !params_.lattice) pixel_excess = cv::max(source_z2 - kCoreZ2, 0.0);
+    const cv::Mat& excess = conspicuous_.empty() ? pixel_excess : conspicuous_;
     Rng rng(hash_combine(params_.seed, kCornerStream));
     const int x_hi = source_rgb_.cols - 2 * c_, y_hi = source_rgb_.rows - 2 * c_;
     for (int c = 0; c < k_; ++c) {
@@ -477,9 +492,7 @@ void CellSet::choose_corner_blocks() {
             for (const cv::Point& other : corner_source_)
                 distance = std::min(distance, cv::norm(s - other));
             const double conspicuous =
-                conspicuous_.empty()
-                    ? 0
-                    : cv::sum(conspicuous_(cv::Rect(s, cv::Size(2 * c_, 2 * c_))))[0];
+                excess.empty() ? 0 : cv::sum(excess(cv::Rect(s, cv::Size(2 * c_, 2 * c_))))[0];
             const bool better = best.x < 0 || (conspicuous == 0 && best_conspicuous == 0
                                                    ? distance > best_distance
                                                    : conspicuous < best_conspicuous);

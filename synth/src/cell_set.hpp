@@ -81,7 +81,7 @@ class CellSet {
     bool may_hold_patch(int x, int y) const { return x >= 0 && y >= 0 && x < cw_ && y < ch_; }
 
   private:
-    void choose_corner_blocks();
+    void choose_corner_blocks(const cv::Mat& source_z2);
     cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::Mat& usage,
                        std::vector<Placement>& placed) const;
     // Image `index`, none of whose blocks copies a source window of `avoid` to the same place;

@@ -491,3 +491,46 @@ TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_se
     CHECK(frame_pixels == 0);
     CHECK(images_with_disc == 0);
 }
+
+TEST_CASE("the corner cores of a small-celled set hold no fleck", "[cell_set]") {
+    // Grey grain strewn with white flecks, a tenth of the surface: half of all random cores
+    // would hold one. A core shows whole at every vertex of its colour (half of them, K = 2),
+    // and marble's one white fleck in a core drew a grid of dots (map seed 4). The four
+    // corners of every cell image are quarters of cores.
+    const int side = 256, cell = 96;
+    const int core = std::max(2, std::max(3, cell / 10) / 3);  // cell_set.cpp: c = w / 3
+    cv::Mat source(side, side, CV_8UC3);
+    cv::RNG rng(11);
+    rng.fill(source, cv::RNG::NORMAL, cv::Scalar::all(100), cv::Scalar::all(6));
+    for (int i = 0; i < side * side / 90; ++i) {
+        const cv::Point at(rng.uniform(0, side - 3), rng.uniform(0, side - 3));
+        source(cv::Rect(at, cv::Size(3, 3))).setTo(cv::Scalar::all(250));
+    }
+    cv::Mat white;
+    cv::inRange(source, cv::Scalar::all(200), cv::Scalar::all(255), white);
+    INFO("white share of the source " << cv::countNonZero(white) / double(side * side));
+    BuildParams p;
+    p.cell_size = cell;
+    p.variants = 1;
+    p.patches = 2;
+    p.candidates = 2;
+    p.lattice = BuildParams::Lattice::Off;
+    int corners_with_fleck = 0, corners = 0;
+    for (const uint64_t seed : {1, 2, 3, 4}) {
+        p.seed = seed;
+        const TextureMap map = build_texture_map(source, p);
+        REQUIRE(map.corner_colours == 2);
+        for (const CellImage& image : map.cell_images)
+            for (const cv::Point at :
+                 {cv::Point(0, 0), cv::Point(cell - core, 0), cv::Point(0, cell - core),
+                  cv::Point(cell - core, cell - core)}) {
+                cv::Mat fleck;
+                cv::inRange(image.pixels(cv::Rect(at, cv::Size(core, core))), cv::Scalar::all(200),
+                            cv::Scalar::all(255), fleck);
+                corners_with_fleck += cv::countNonZero(fleck) > 0;
+                ++corners;
+            }
+    }
+    INFO("cell image corners showing a fleck: " << corners_with_fleck << " of " << corners);
+    CHECK(corners_with_fleck == 0);
+}
