@@ -216,6 +216,11 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // place, the demo's 32 images at 360 dpi ran out of calm places and copied its white vein in
     // straight-sided shards all over the plane. Quilted from the source turned half a turn, the
     // corpus's texture energy rose by a third (gravel lit from the other side).
+    // That holds for large cells, whose block searches look at random windows of a larger
+    // source. A source no larger than the search window (the corpus's 384 px) is searched whole,
+    // and a second variant with a fresh account came out the first's very images: cells side by
+    // side showed one image, as with one variant. There the second variant carries on from
+    // the first, as images 17 to 32 of one set.
     const size_t combinations = kinds * kinds;
     const size_t variants = size_t(params.variants > 0 ? params.variants : large_ ? 2 : 1);
     images_.resize(combinations * variants);
@@ -223,22 +228,24 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // vein shows in about one image of the whole set, not one of each variant (the demo's white
     // vein stood as a straight-sided block in a second-variant image).
     std::vector<Placement> placed;
-    const cv::Mat after_strips = variants > 1 ? usage.clone() : cv::Mat();
-    cv::Mat all_uses = variants > 1 ? usage.clone() : cv::Mat();  // one variant: `usage`
+    // Accounts of their own: large cells' variants, each from what the strips left.
+    const bool fresh_accounts = variants > 1 && large_;
+    const cv::Mat after_strips = fresh_accounts ? usage.clone() : cv::Mat();
+    cv::Mat all_uses = fresh_accounts ? usage.clone() : cv::Mat();  // else `usage` is all uses
     for (size_t variant = 0; variant < variants; ++variant) {
-        if (variant > 0) after_strips.copyTo(usage), placed.clear();
+        if (variant > 0 && fresh_accounts) after_strips.copyTo(usage), placed.clear();
         for (size_t begin = 0; begin < combinations; begin += kImageBatch) {
             const size_t end = std::min(combinations, begin + kImageBatch);
             const size_t first = variant * combinations + begin;
             std::vector<std::vector<Placement>> batch(end - begin);
             parallel_for(end - begin, params.threads, [&](size_t i) {
-                images_[first + i] =
-                    make_image(first + i, placed, usage, variants > 1 ? all_uses : usage, batch[i]);
+                images_[first + i] = make_image(first + i, placed, usage,
+                                                fresh_accounts ? all_uses : usage, batch[i]);
             });
             for (const auto& b : batch) {
                 placed.insert(placed.end(), b.begin(), b.end());
                 count_uses(usage, b);
-                if (variants > 1) count_uses(all_uses, b);
+                if (fresh_accounts) count_uses(all_uses, b);
             }
         }
     }

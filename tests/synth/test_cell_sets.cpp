@@ -353,6 +353,42 @@ TEST_CASE("by default, large cells that copy their source more than once get two
     CHECK(small.cell_images.size() == 16);
 }
 
+TEST_CASE("the two variants of a small source's set differ, the first as one variant builds it",
+          "[cell_set]") {
+    // A source no larger than a block search's window is searched whole: a second variant with
+    // an account of its own (as large cells' have) repeated the first's images pixel for pixel,
+    // and cells side by side showed one image, as with one variant.
+    cv::Mat noise(160, 160, CV_8UC3);
+    cv::RNG(7).fill(noise, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
+    BuildParams p;
+    p.patches = 2;
+    p.candidates = 2;
+    p.cell_size = 40;
+    p.variants = 2;
+    const TextureMap two = build_texture_map(noise, p);
+    CHECK(two.variants == 2);
+    CHECK(two.cell_images.size() == 32);
+    p.variants = 1;
+    const TextureMap one = build_texture_map(noise, p);
+    CHECK(one.variants == 1);
+    CHECK(one.cell_images.size() == 16);
+    // The first variant's images are what a one-variant build makes: the second is made after.
+    for (size_t i = 0; i < 16; ++i)
+        CHECK(cv::norm(two.cell_images[i].pixels, one.cell_images[i].pixels, cv::NORM_INF) == 0);
+    // The second differs from the first inside the frame they share.
+    const int frame = 40 / 10 + 1;
+    const cv::Rect inside(frame, frame, 40 - 2 * frame, 40 - 2 * frame);
+    for (size_t i = 0; i < 16; ++i) {
+        cv::Mat same;
+        cv::compare(two.cell_images[i].pixels(inside), two.cell_images[i + 16].pixels(inside), same,
+                    cv::CMP_EQ);
+        cv::cvtColor(same, same, cv::COLOR_RGB2GRAY);
+        INFO("combination " << i << ": pixels alike in both variants "
+                            << cv::countNonZero(same == 255) << " of " << inside.area());
+        CHECK(cv::countNonZero(same == 255) < inside.area() / 2);
+    }
+}
+
 TEST_CASE("a set renders region by region exactly as Sampler::sample", "[cell_set][sampler]") {
     const TextureMap& map = small_set();
     const int64_t big = int64_t(1) << 31;
