@@ -67,6 +67,14 @@ Corners corners_of(size_t index, int k) {
     return {m % k, m / k % k, m / k / k % k, m / k / k / k % k, m / (k * k * k * k)};
 }
 
+// Grey grain, side x side px, normal about 110 with deviation 14. Its own generator:
+// cv::randn's is the process's, and what other tests drew before would change the grain.
+cv::Mat grey_grain(int side, uint64_t seed) {
+    cv::Mat grain(side, side, CV_8UC3);
+    cv::RNG(seed).fill(grain, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
+    return grain;
+}
+
 std::string sha256_hex(const cv::Mat& m) {
     std::array<unsigned char, 32> digest{};
     unsigned int len = 0;
@@ -338,8 +346,7 @@ TEST_CASE("with two variants no two cells across an edge show the same image", "
 
 TEST_CASE("by default, large cells that copy their source more than once get two variants",
           "[cell_set][slab][heavy]") {
-    cv::Mat noise(420, 420, CV_8UC3);
-    cv::RNG(7).fill(noise, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
+    const cv::Mat noise = grey_grain(420, 7);
     BuildParams p;
     p.patches = 2;
     p.candidates = 2;
@@ -358,8 +365,7 @@ TEST_CASE("the two variants of a small source's set differ, the first as one var
     // A source no larger than a block search's window is searched whole: a second variant with
     // an account of its own (as large cells' have) repeated the first's images pixel for pixel,
     // and cells side by side showed one image, as with one variant.
-    cv::Mat noise(160, 160, CV_8UC3);
-    cv::RNG(7).fill(noise, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
+    const cv::Mat noise = grey_grain(160, 7);
     BuildParams p;
     p.patches = 2;
     p.candidates = 2;
@@ -497,10 +503,7 @@ TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_se
     // cells of exemplars under 1024 px are made as before. Made the old way, this set showed
     // the disc in 4 images; charged for every copy but the first, in 1 or 2.
     const int cell = 336, side = 840;
-    cv::Mat noise(side, side, CV_8UC3);
-    // Its own generator: cv::randn's is the process's, and what other tests drew before
-    // changed this one's grain (and its set).
-    cv::RNG(5).fill(noise, cv::RNG::NORMAL, cv::Scalar::all(110), cv::Scalar::all(14));
+    cv::Mat noise = grey_grain(side, 5);
     cv::GaussianBlur(noise, noise, {0, 0}, 1.5);
     cv::circle(noise, {side / 2, side / 2}, 52, cv::Scalar::all(250), cv::FILLED, cv::LINE_AA);
     BuildParams p;
