@@ -109,12 +109,15 @@ void run_info(const std::string& path) {
     const PatchCounts counts = count_patches(map);
     nlohmann::ordered_json j;
     j["map_id"] = map.id_hex();
-    j["format_version"] = synth::kMapFormatVersion;
+    j["format_version"] = synth::format_version_of(map);
     j["cell_width"] = map.cell_width;
     j["cell_height"] = map.cell_height;
     j["cell_images"] = map.cell_images.size();
     j["corner_colours"] = map.corner_colours;
     j["variants"] = map.variants;
+    if (map.variants > 1)
+        j["variant_rule"] =
+            map.variant_rule == synth::TextureMap::VariantRule::parity ? "parity" : "break twins";
     j["patches_a"] = counts.a;  // over all cell images
     j["patches_b"] = counts.b;
     j["source_width"] = map.source.cols;

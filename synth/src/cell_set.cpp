@@ -627,8 +627,9 @@ cv::Mat CellSet::neighbourhood(size_t index) const {
     const size_t k = size_t(k_), combinations = k * k * k * k;
     const uint32_t corner[2][2] = {{uint32_t(index % k), uint32_t(index / k % k)},
                                    {uint32_t(index / k / k % k), uint32_t(index / k / k / k % k)}};
-    // Across an edge the other variant, across a vertex the same (corner_colours.hpp).
-    const size_t variant = index / combinations, variants = images_.size() / combinations;
+    // The neighbours show the first variant, as about four cells in five do (twins apart,
+    // corner_colours.hpp).
+    const size_t variant = index / combinations;
     // Vertices beyond the cell's own four take the colour of the nearest of them.
     const auto colour = [&](int vi, int vj) {
         return corner[std::clamp(vj, 0, 1)][std::clamp(vi, 0, 1)];
@@ -639,7 +640,7 @@ cv::Mat CellSet::neighbourhood(size_t index) const {
             const size_t m =
                 colour(i, j) +
                 k * (colour(i + 1, j) + k * (colour(i, j + 1) + k * colour(i + 1, j + 1))) +
-                combinations * ((variant + size_t(i + j + 2)) % variants);
+                combinations * (i == 0 && j == 0 ? variant : 0);
             images_[m].copyTo(out(cv::Rect((i + 1) * cw_, (j + 1) * ch_, cw_, ch_)));
         }
     return out;

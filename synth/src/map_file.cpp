@@ -253,6 +253,9 @@ std::vector<Section> content_sections(const TextureMap& map) {
         w.le<uint32_t>(uint32_t(map.corner_colours));
         // Only sets of variants carry it, so that sets of one image per combination keep their id.
         if (map.variants > 1) w.le<uint32_t>(uint32_t(map.variants));
+        // Likewise only sets whose variants break twins: parity maps keep their id.
+        if (map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity)
+            w.le<uint32_t>(uint32_t(map.variant_rule));
         out.push_back({"CSET", 0, std::move(w.bytes)});
     }
     // Likewise only maps that know their size: the id of a map built without stays what it was.
@@ -316,6 +319,10 @@ void assign_map_id(TextureMap& map) {
     map.id = content_hash(content_sections(map));
 }
 
+uint32_t format_version_of(const TextureMap& map) {
+    return map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity ? 3 : 2;
+}
+
 std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
     std::vector<Section> sections = content_sections(map);
     sections.push_back({"IDNT", 0, std::vector<uint8_t>(map.id.begin(), map.id.end())});
@@ -338,7 +345,7 @@ std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
     }
     Writer out;
     out.u8s(kMagic, sizeof kMagic);
-    out.le<uint32_t>(kMapFormatVersion);
+    out.le<uint32_t>(format_version_of(map));
     out.le<uint32_t>(uint32_t(sections.size()));
     out.le<uint64_t>(offset);
     out.le<uint32_t>(crc_of(table.bytes));
@@ -516,6 +523,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         Reader r = section("CSET", 0);
         const auto k = r.le<uint32_t>("corner colours");
         const auto v = r.remaining() > 0 ? r.le<uint32_t>("variants") : 1u;
+        const auto rule = r.remaining() > 0 ? r.le<uint32_t>("variant rule") : 0u;
         r.done();
         if (k < 2 || k > uint32_t(kMaxCornerColours))
             r.fail("corner colours " + std::to_string(k) + " is out of range (2 to " +
@@ -527,7 +535,17 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
             r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
                    " need " + std::to_string(k * k * k * k * v) + " cell images, the map holds " +
                    std::to_string(images));
+        if (rule > uint32_t(TextureMap::VariantRule::break_twins))
+            r.fail("variant rule " + std::to_string(rule) +
+                   " is unknown (0 parity, 1 break twins)");
+        if (rule != 0 && version < 3)
+            r.fail("variant rule " + std::to_string(rule) + " in a map of format version " +
+                   std::to_string(version) + " (it came with version 3)");
+        if (rule != 0 && v < 2)
+            r.fail("variant rule " + std::to_string(rule) + " needs 2 variants, the map has " +
+                   std::to_string(v));
         map.corner_colours = int(k), map.variants = int(v);
+        map.variant_rule = TextureMap::VariantRule(rule);
     }
     {
         Reader r = section("SRCE", 0);

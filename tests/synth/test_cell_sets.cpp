@@ -131,6 +131,9 @@ double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
 void require_seamless(const TextureMap& map) {
     REQUIRE((map.variants == 1 || map.variants == 2));
     const int k = map.corner_colours, variants = map.variants;
+    // With the parity rule the cells across an edge show the other variant; breaking twins,
+    // either variant may stand beside either.
+    const bool any_variants = map.variant_rule == TextureMap::VariantRule::break_twins;
     const int cell = map.cell_images[0].pixels.cols;
     std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
     for (const CellImage& image : map.cell_images) {
@@ -151,11 +154,10 @@ void require_seamless(const TextureMap& map) {
     for (size_t a = 0; a < lab.size(); ++a)
         for (size_t b = 0; b < lab.size(); ++b) {
             const Corners ca = corners_of(a, k), cb = corners_of(b, k);
-            // b right of a, and b below a: the shared corners agree, and a cell's neighbours
-            // across an edge show the other variant.
+            // b right of a, and b below a: the shared corners agree.
             for (const bool beside : {true, false}) {
                 const bool fits =
-                    (variants == 1 || ca.variant != cb.variant) &&
+                    (variants == 1 || any_variants || ca.variant != cb.variant) &&
                     (beside ? ca.tr == cb.tl && ca.br == cb.bl : ca.bl == cb.tl && ca.br == cb.tr);
                 const double jump = beside ? column_jump(lab[a], cell - 1, lab[b], 0)
                                            : column_jump(lab_t[a], cell - 1, lab_t[b], 0);
@@ -170,8 +172,8 @@ void require_seamless(const TextureMap& map) {
             }
         }
     // Every pair the hash can pick: each image has K^2 possible right and K^2 lower neighbours
-    // (of the other variant when there are two).
-    REQUIRE(compatible == 2 * int(lab.size()) * k * k);
+    // in each variant it may meet.
+    REQUIRE(compatible == 2 * int(lab.size()) * k * k * (any_variants ? variants : 1));
     // The measure can fail: pairs the hash never picks do not meet seamlessly.
     INFO("compatible " << compatible_sum / compatible << ", others "
                        << incompatible_sum / incompatible);
@@ -185,6 +187,7 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     const TextureMap& map = small_set();
     REQUIRE(map.corner_colours == 2);
     REQUIRE(map.variants == 2);
+    REQUIRE(map.variant_rule == TextureMap::VariantRule::break_twins);
     REQUIRE(map.cell_images.size() == 32);
     require_seamless(map);
 }
@@ -296,8 +299,9 @@ TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cel
     // Critical values at p = 0.001: 124.8 for 80 degrees of freedom, 26.1 for 8.
     CHECK(chi_square(count) < 124.8);
     CHECK(chi_square(next) < 26.1);
-    // With two variants, each is uniform over its parity's cells and the corners as before.
-    map.corner_colours = 2, map.variants = 2;
+    // With two variants by parity, each is uniform over its parity's cells and the corners as
+    // before.
+    map.corner_colours = 2, map.variants = 2, map.variant_rule = TextureMap::VariantRule::parity;
     std::vector<double> even(16, 0), odd(16, 0);
     for (int j = 0; j < side; ++j)
         for (int i = 0; i < side; ++i) {
@@ -309,6 +313,22 @@ TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cel
     // 15 degrees of freedom.
     CHECK(chi_square(even) < 37.7);
     CHECK(chi_square(odd) < 37.7);
+    // Breaking twins, the combination stays uniform; the second variant goes where it breaks
+    // one, about one cell in five.
+    map.variant_rule = TextureMap::VariantRule::break_twins;
+    std::vector<double> combinations(16, 0);
+    double second = 0;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const uint32_t m = cell_image_index(map, 99, {i - 150, j + 7000});
+            REQUIRE(m < 32);
+            ++combinations[m % 16];
+            second += m / 16;
+        }
+    CHECK(chi_square(combinations) < 37.7);
+    INFO("cells showing the second variant: " << second / (side * side));
+    CHECK(second > 0.1 * side * side);
+    CHECK(second < 0.35 * side * side);
     map.corner_colours = 3, map.variants = 1;
     // Another seed picks differently.
     const bool differs = cell_image_index(map, 100, {0, 0}) != cell_image_index(map, 99, {0, 0}) ||
@@ -317,31 +337,44 @@ TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cel
     REQUIRE(differs);
 }
 
-TEST_CASE("with two variants no two cells across an edge show the same image", "[cell_set]") {
-    // With one image per combination of K = 2 corner colours, the cells either side of an edge
-    // show the same image when the three vertices along each side of the pair agree: one edge
-    // in 16, a motif doubled side by side.
+TEST_CASE("variants keep a cell's eight neighbours from showing its image", "[cell_set]") {
+    // With one image per combination of K = 2 corner colours, two neighbours show the same
+    // image when the three vertices along each side of the pair agree (across an edge), or the
+    // three along the diagonal and the two pairs beside it (across a vertex): one pair in 16
+    // either way, a motif doubled side by side.
     TextureMap map;
     map.corner_colours = 2;
     map.id[3] = 0x41;
-    auto same_across_edges = [&map] {
-        int same = 0;
+    struct Twins {
+        int edge = 0, vertex = 0;
+    };
+    auto twins = [&map] {
+        Twins t;
         for (int64_t j = -100; j < 100; ++j)
             for (int64_t i = -100; i < 100; ++i) {
                 const uint32_t m = cell_image_index(map, 5, {i, j});
-                same += m == cell_image_index(map, 5, {i + 1, j});
-                same += m == cell_image_index(map, 5, {i, j + 1});
+                t.edge += m == cell_image_index(map, 5, {i + 1, j});
+                t.edge += m == cell_image_index(map, 5, {i, j + 1});
+                t.vertex += m == cell_image_index(map, 5, {i + 1, j + 1});
+                t.vertex += m == cell_image_index(map, 5, {i - 1, j + 1});
             }
-        return same;
+        return t;
     };
     map.variants = 1;
-    const int before = same_across_edges();
-    map.variants = 2;
-    const int now = same_across_edges();
-    INFO("edges between two copies of one image, of 80000: one variant " << before << ", two "
-                                                                         << now);
-    CHECK(before > 80000 / 16 * 8 / 10);
-    CHECK(now == 0);
+    const Twins one = twins();
+    map.variants = 2, map.variant_rule = TextureMap::VariantRule::parity;
+    const Twins parity = twins();
+    map.variant_rule = TextureMap::VariantRule::break_twins;
+    const Twins broken = twins();
+    INFO("pairs showing one image, of 80000 across an edge / 80000 across a vertex: one variant "
+         << one.edge << " / " << one.vertex << ", by parity " << parity.edge << " / "
+         << parity.vertex << ", breaking twins " << broken.edge << " / " << broken.vertex);
+    CHECK(one.edge > 80000 / 16 * 8 / 10);
+    CHECK(one.vertex > 80000 / 16 * 8 / 10);
+    CHECK(parity.edge == 0);
+    CHECK(parity.vertex > 80000 / 16 * 8 / 10);
+    CHECK(broken.edge == 0);
+    CHECK(broken.vertex < one.vertex / 3);
 }
 
 TEST_CASE("by default, large cells that copy their source more than once get two variants",
@@ -429,6 +462,28 @@ TEST_CASE("a map of one cell image from before cell sets loads and renders as it
     REQUIRE(decode_texture_map(encode_texture_map(map), "again").id == map.id);
 }
 
+TEST_CASE("a set of two variants by parity from before twins were broken renders as it did",
+          "[cell_set][map_file]") {
+    // Made by the tilejet of commit 2b4166d (map build config/demo/green-marble.png --dpi 50
+    // --cell 32 --patches 12 --variants 2 --seed 3), with the SHA-256 of its renders from that
+    // tilejet's `render -o X.raw`: a job re-rendered months later prints the same tiles.
+    const auto path = std::filesystem::path(TILEJET_SOURCE_DIR) /
+                      "tests/synth/data/legacy-two-variants-by-parity.tjmap";
+    const TextureMap map = load_texture_map(path);
+    REQUIRE(map.variants == 2);
+    REQUIRE(map.variant_rule == TextureMap::VariantRule::parity);
+    REQUIRE(format_version_of(map) == 2);
+    REQUIRE(map.id_hex().substr(0, 16) == "0cb43884f1f8e210");
+    CHECK(sha256_hex(render_region(map, 7, {0, 0, 300, 200}, 1)) ==
+          "36b9b4981fb1cb41be48740bef5a7aea40daaddfc856821a5b5f64861bbbae09");
+    CHECK(sha256_hex(render_region(map, 41237, {-1000000, 77777, 257, 131}, 2)) ==
+          "6266a4aadd302806ef791f289a5dada27619b3644307c1748b6fe9db9d0b19de");
+    // Saved again it is version 2 with its id: no rule is added to its CSET.
+    const std::vector<uint8_t> bytes = encode_texture_map(map);
+    REQUIRE(bytes[8] == 2);
+    REQUIRE(decode_texture_map(bytes, "again").id == map.id);
+}
+
 TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell set",
           "[cell_set][quality]") {
     // The one-image map of the demo design as tilejet made it before cell sets (32 px cells),
@@ -462,7 +517,38 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
 TEST_CASE("a set's variants survive saving, and a count that does not fit is refused on load",
           "[cell_set][map_file]") {
     TextureMap map = small_set();
-    REQUIRE(decode_texture_map(encode_texture_map(map), "again").variants == 2);
+    {
+        const std::vector<uint8_t> bytes = encode_texture_map(map);
+        const TextureMap again = decode_texture_map(bytes, "again");
+        REQUIRE(again.variants == 2);
+        REQUIRE(again.variant_rule == TextureMap::VariantRule::break_twins);
+        REQUIRE(again.id == map.id);
+        REQUIRE(bytes[8] == 3);  // the format version the rule came with
+        // A version 2 reader would take it for a parity map and render other tiles: a file
+        // that claims version 2 with a rule is refused.
+        std::vector<uint8_t> claimed_2 = bytes;
+        claimed_2[8] = 2;
+        CHECK_THROWS_WITH(decode_texture_map(claimed_2, "crafted.tjmap"),
+                          Catch::Contains("crafted.tjmap") &&
+                              Catch::Contains("variant rule 1 in a map of format version 2"));
+        // The rule is content: the same images by parity are another map, of version 2.
+        TextureMap by_parity = map;
+        by_parity.variant_rule = TextureMap::VariantRule::parity;
+        assign_map_id(by_parity);
+        REQUIRE(by_parity.id != map.id);
+        const std::vector<uint8_t> parity_bytes = encode_texture_map(by_parity);
+        REQUIRE(parity_bytes[8] == 2);
+        REQUIRE(decode_texture_map(parity_bytes, "parity").variant_rule ==
+                TextureMap::VariantRule::parity);
+    }
+    {
+        TextureMap unknown = map;
+        unknown.variant_rule = TextureMap::VariantRule(7);
+        assign_map_id(unknown);
+        CHECK_THROWS_WITH(decode_texture_map(encode_texture_map(unknown), "crafted.tjmap"),
+                          Catch::Contains("crafted.tjmap") && Catch::Contains("CSET") &&
+                              Catch::Contains("variant rule 7 is unknown"));
+    }
     map.variants = 1;  // 16 images expected, 32 held
     assign_map_id(map);
     CHECK_THROWS_WITH(decode_texture_map(encode_texture_map(map), "crafted.tjmap"),

@@ -84,7 +84,8 @@ std::vector<StoredSection> sections_of(const std::string& file) {
     return out;
 }
 
-std::string file_of(const std::vector<StoredSection>& sections) {
+// `version`: what maps of one cell image, the ones these tests craft, are written with.
+std::string file_of(const std::vector<StoredSection>& sections, uint32_t version = 2) {
     std::string table, payloads;
     uint64_t offset = 32 + 32 * sections.size();
     for (const StoredSection& s : sections) {
@@ -96,7 +97,7 @@ std::string file_of(const std::vector<StoredSection>& sections) {
         offset += s.payload.size();
     }
     std::string out = "TJMAP\r\n\x1a";
-    put_le(out, kMapFormatVersion, 4), put_le(out, sections.size(), 4), put_le(out, offset, 8);
+    put_le(out, version, 4), put_le(out, sections.size(), 4), put_le(out, offset, 8);
     put_le(out, crc32_of(table), 4), put_le(out, 0, 4);
     return out + table + payloads;
 }

@@ -21,10 +21,14 @@ class MapFileError : public SynthError {
     using SynthError::SynthError;
 };
 
-inline constexpr uint32_t kMapFormatVersion = 2;  // 2: corner-coloured cell sets (CSET)
+// 2: corner-coloured cell sets (CSET); 3: their variant rule (CSET). A map is written with the
+// lowest version that holds it, so maps without the newer fields still open in older tilejets.
+inline constexpr uint32_t kMapFormatVersion = 3;
 
 // Computes and sets map.id from the map's content.
 void assign_map_id(TextureMap& map);
+// The format version a map is written with: the lowest that holds what it has.
+uint32_t format_version_of(const TextureMap& map);
 
 std::vector<uint8_t> encode_texture_map(const TextureMap& map);
 // `name` is what error messages call the data (usually the file's path).

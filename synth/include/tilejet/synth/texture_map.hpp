@@ -95,10 +95,21 @@ struct TextureMap {
     // one cell image everywhere (the maps of format version 1 and earlier).
     int corner_colours = 1;
     // V: cell images per combination of corner colours, cell_images[combination + K^4 v]. With
-    // V = 2 a cell shows variant (i + j) mod 2, so the cells either side of an edge show
-    // different variants and never the same image (with K = 2 and one image per combination,
-    // one edge in 16 joined two copies of one image: a motif doubled side by side).
+    // K = 2 and one image per combination, one edge in 16 and one vertex in 16 joined two
+    // copies of one image: a motif doubled side by side. With V = 2 the variant rule below
+    // keeps such neighbours apart.
     int variants = 1;
+    // Which variant a cell of a set of two shows (corner_colours.hpp).
+    enum class VariantRule : uint32_t {
+        // (i + j) mod 2: never one image across an edge, but across a vertex one in 16 (the
+        // maps of 2026-11 and earlier).
+        parity = 0,
+        // The first unless a neighbour shows the same combination; then one of the parities
+        // that parts the two (corner_colours.hpp). The second shows on about one cell in
+        // five; no image twice across an edge, across a vertex a fifth as often as by parity.
+        break_twins = 1,
+    };
+    VariantRule variant_rule = VariantRule::parity;
     cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
     std::vector<CellImage> cell_images;
     BuildRecord build;

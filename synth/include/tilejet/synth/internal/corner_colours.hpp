@@ -2,10 +2,15 @@
 
 // Which cell image a cell shows (docs/design.md section 9). Every lattice vertex (i, j), the
 // top-left corner of cell (i, j), gets one of K colours by integer hash of (map, seed, i, j); a
-// cell shows the image made for its four corners' colours (of the variant of its parity, when a
-// set has two). Neighbouring cells share two corners, and the images of a set are built so that
-// any two that share corner colours meet seamlessly (cell_set.hpp), so whatever the hash picks
-// is seamless, and neither a cell image nor an edge nor a corner lies on a grid.
+// cell shows the image made for its four corners' colours (in a set of two variants, the
+// variant its rule picks). Neighbouring cells share two corners, and the images of a set are built
+// so that any two that share corner colours meet seamlessly (cell_set.hpp), so whatever the hash
+// picks is seamless, and neither a cell image nor an edge nor a corner lies on a grid.
+//
+// With K = 2 two neighbours show one combination one time in 16 across an edge and across a
+// vertex alike, and a cell has eight neighbours: on a wall about two cells in five touched a
+// copy of themselves, the motif doubled that the eye and `tilejet eval`'s periodicity find
+// first. Sets of two variants break those twins (TextureMap::VariantRule).
 
 #include <cstdint>
 
@@ -19,6 +24,7 @@ class CornerColours {
     CornerColours(const TextureMap& map, uint64_t seed)
         : k_(uint64_t(map.corner_colours)),
           variants_(map.variants),
+          rule_(map.variant_rule),
           key_(hash_combine(hash_combine(map.id64(), seed), kVertexStream)) {}
 
     // Uniform in [0, K) by Lemire's multiply-shift: no division, bias below 2^-60 for small K.
@@ -28,26 +34,49 @@ class CornerColours {
         return uint32_t(uint128(h) * k_ >> 64);
     }
 
-    // The cell image index of cell (i, j): tl + K tr + K^2 bl + K^3 br, plus K^4 for the second
-    // variant on cells of odd i + j. A checkerboard of variants rather than a hashed one: the
-    // four cells across an edge from a cell always show the other variant, so never its image.
-    // The two variants are made alike (cell_set.hpp), so the checkerboard itself does not show.
+    // The cell image index of cell (i, j): its combination tl + K tr + K^2 bl + K^3 br, plus
+    // K^4 when it shows the second variant.
     uint32_t image(int64_t i, int64_t j) const {
         if (k_ == 1) return 0;
-        const uint32_t combination =
-            image_of(colour(i, j), colour(i + 1, j), colour(i, j + 1), colour(i + 1, j + 1));
-        if (variants_ == 1) return combination;
-        return combination + uint32_t(k_ * k_ * k_ * k_) * uint32_t((i + j) & 1);
+        const uint32_t c = combination(i, j);
+        if (variants_ == 1) return c;
+        const uint32_t v = rule_ == TextureMap::VariantRule::parity
+                               ? uint32_t((i + j) & 1)
+                               : twin_breaking_variant(i, j, c);
+        return c + uint32_t(k_ * k_ * k_ * k_) * v;
+    }
+    uint32_t combination(int64_t i, int64_t j) const {
+        return image_of(colour(i, j), colour(i + 1, j), colour(i, j + 1), colour(i + 1, j + 1));
     }
     uint32_t image_of(uint32_t tl, uint32_t tr, uint32_t bl, uint32_t br) const {
         return uint32_t(tl + k_ * (tr + k_ * (bl + k_ * br)));
     }
 
   private:
+    // VariantRule::break_twins. A cell none of whose eight neighbours has its combination shows
+    // the first variant. One with such a twin across an edge shows the variant of its parity,
+    // (i + j) mod 2, as in the parity rule, which differs from that of every cell across an
+    // edge; one whose twins are all across a vertex shows its column's, i mod 2, which differs
+    // from theirs. Twins across an edge see each other and both take the parity: none is left.
+    // Across a vertex one is left when one of the two also has a twin across an edge, as where
+    // four cells around a vertex share a combination (3 x 3 vertices of one colour, 1 in 256),
+    // which two variants cannot part anyway.
+    uint32_t twin_breaking_variant(int64_t i, int64_t j, uint32_t c) const {
+        bool across_vertex = false;
+        for (int64_t dj = -1; dj <= 1; ++dj)
+            for (int64_t di = -1; di <= 1; ++di) {
+                if ((di == 0 && dj == 0) || combination(i + di, j + dj) != c) continue;
+                if (di == 0 || dj == 0) return uint32_t((i + j) & 1);
+                across_vertex = true;
+            }
+        return across_vertex ? uint32_t(i & 1) : 0;
+    }
+
     // Keeps vertex colours independent of the activation hashes of the same map and seed.
     static constexpr uint64_t kVertexStream = 0x636f726e6572ull;  // "corner"
     uint64_t k_;
     int variants_;
+    TextureMap::VariantRule rule_;
     uint64_t key_;
 };
 
