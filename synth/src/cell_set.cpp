@@ -222,7 +222,9 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // side showed one image, as with one variant. There the second variant carries on from
     // the first, as images 17 to 32 of one set.
     const size_t combinations = kinds * kinds;
-    const size_t variants = size_t(params.variants > 0 ? params.variants : large_ ? 2 : 1);
+    const size_t variants = size_t(params.variants > 0            ? params.variants
+                                   : large_ || !params.fine_grain ? 2
+                                                                  : 1);
     images_.resize(combinations * variants);
     // But the source's conspicuous features are charged for every copy any variant made: a
     // vein shows in about one image of the whole set, not one of each variant (the demo's white

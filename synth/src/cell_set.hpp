@@ -38,10 +38,11 @@ struct CellSetParams {
     cv::Size cell;
     int corner_colours = 2;  // K: K^4 combinations of corner colours
     // V images per combination, K^4 V in all (corner_colours.hpp). Each variant is quilted as
-    // the first, with the same frame (its corners' strips) and its own inside, from its own
-    // account of what it copied. 0: 2 for large cells whose set copies its source more than
-    // once (kLargeCell), else 1.
+    // the first, with the same frame (its corners' strips) and its own inside. 0: 2, but 1 for
+    // fine grain in cells up to kLargeCell (build.hpp says why).
     int variants = 0;
+    // The exemplar's structures are a few px (grain.hpp): see `variants`.
+    bool fine_grain = false;
     uint64_t seed = 1;
     int threads = 0;
     // Near-regular exemplars: every block and strip copies from a lattice translation (+-3 px)

@@ -377,20 +377,31 @@ TEST_CASE("variants keep a cell's eight neighbours from showing its image", "[ce
     CHECK(broken.vertex < one.vertex / 3);
 }
 
-TEST_CASE("by default, large cells that copy their source more than once get two variants",
+TEST_CASE("by default a set has two variants, but one for fine grain in cells up to 320 px",
           "[cell_set][slab][heavy]") {
-    const cv::Mat noise = grey_grain(420, 7);
+    const cv::Mat fine = grey_grain(420, 7);
+    cv::Mat coarse;
+    cv::GaussianBlur(fine, coarse, {0, 0}, 6);
     BuildParams p;
     p.patches = 2;
     p.candidates = 2;
-    p.cell_size = 336;  // over kLargeCell (320 px); 16 images of it cover the source ten times
-    const TextureMap large = build_texture_map(noise, p);
-    CHECK(large.variants == 2);
-    CHECK(large.cell_images.size() == 32);
+    // Cells from the grain (256 px here): the grain decides.
+    const TextureMap of_fine = build_texture_map(fine, p), of_coarse = build_texture_map(coarse, p);
+    INFO("grain: fine " << of_fine.build.grain << " px, coarse " << of_coarse.build.grain << " px");
+    REQUIRE(of_fine.build.grain > 0);
+    REQUIRE(of_fine.build.grain < BuildParams::kFineGrain);
+    REQUIRE(of_coarse.build.grain >= BuildParams::kFineGrain);
+    CHECK(of_fine.variants == 1);
+    CHECK(of_fine.cell_images.size() == 16);
+    CHECK(of_coarse.variants == 2);
+    CHECK(of_coarse.cell_images.size() == 32);
+    CHECK(of_coarse.variant_rule == TextureMap::VariantRule::break_twins);
+    // Cells over kLargeCell (320 px) get two whatever the grain; so do cells given by --cell,
+    // whose grain is not measured.
+    p.cell_size = 336;
+    CHECK(build_texture_map(fine, p).variants == 2);
     p.cell_size = 320;
-    const TextureMap small = build_texture_map(noise, p);
-    CHECK(small.variants == 1);
-    CHECK(small.cell_images.size() == 16);
+    CHECK(build_texture_map(fine, p).variants == 2);
 }
 
 TEST_CASE("the two variants of a small source's set differ, the first as one variant builds it",
@@ -496,7 +507,7 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
     p.candidates = 96;
     p.seed = 3;
     const TextureMap set = build_texture_map(demo_exemplar(), p);
-    REQUIRE(set.cell_images.size() == 16);  // 2 corner colours, one variant: the defaults
+    REQUIRE(set.cell_images.size() == 32);  // 2 corner colours, two variants: the defaults
     const Region region{1000, -2000, 384, 384};
     const double old_grid = grid_contrast(render_region(old_map, 7, region), 32, 32);
     const double new_grid = grid_contrast(render_region(set, 7, region), 32, 32);

@@ -23,15 +23,20 @@ struct BuildParams {
     // 61 s for a 384 px exemplar and 15 MB. The hash still picks among 16 images per cell, with
     // their own patches over them, and no grid showed on walls of either.
     int corner_colours = 2;
-    // V cell images per combination of corner colours, K^4 V in all; with 2 the cells across an
-    // edge show different variants, never one image twice side by side (with 1, one edge in 16
-    // did: on the demo design at 360 dpi a light cloud stood twice side by side, 640 px apart).
-    // 0: default, 2 for cells over 320 px whose set copies its source more than once (the demo
-    // at 360 dpi, scans up to about 2600 px), else 1. By measurement: on the corpus's 256 px
-    // cells two variants made gravel's texture energy 1.26 times quilting's against 1.18 (granite
-    // 1.10 against 1.09, limestone 1.14 both), and they double the build time, which a 4096 px
-    // scan (its set covers two fifths of its source) cannot spare within its 3 minutes.
+    // V cell images per combination of corner colours, K^4 V in all; with 2 a cell shows the
+    // second only where a neighbour has its combination (TextureMap::VariantRule): with one,
+    // about two cells in five touched a copy of themselves, the motif doubled that the eye and
+    // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
+    // 0: default, 2, but 1 for fine grain (under kFineGrain px) in cells of up to 320 px. By
+    // measurement over four map seeds of the corpus (session 21): two variants brought the
+    // worst periodicity of each design under the gate on all but marble (1.42, a short lag of
+    // its own texture, not a twin; before, six failed, up to 3.22), texture energy about the
+    // same on coarse designs but up on fine ones, whose second variant, copied from what the
+    // first left of a 512 px source, cut more grains (gravel 1.26 against 1.20 on average,
+    // granite 1.19 against 1.15), and a twin of fine grain has no landmark for the eye to
+    // find. Twice the build time where there are two.
     int variants = 0;
+    static constexpr double kFineGrain = 8;
     // P per cell image: the best P candidates are kept and split into A and B.
     // 0: default (600 for a single cell image, 32 per image of a set).
     int patches = 0;
