@@ -29,8 +29,8 @@ struct BuildParams {
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
     // 0: default, 2, but 1 for fine grain (under kFineGrain px) in cells of up to 320 px. By
     // measurement over four map seeds of the corpus (session 21): two variants brought the
-    // worst periodicity of each design under the gate on all but marble (1.42, a short lag of
-    // its own texture, not a twin; before, six failed, up to 3.22), texture energy about the
+    // worst periodicity of each design under the gate on all but marble (1.55: a twin across a
+    // vertex the rule leaves; before, six failed, up to 3.22), texture energy about the
     // same on coarse designs but up on fine ones, whose second variant, copied from what the
     // first left of a 512 px source, cut more grains (gravel 1.26 against 1.20 on average,
     // granite 1.19 against 1.15), and a twin of fine grain has no landmark for the eye to
