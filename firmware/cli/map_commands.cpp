@@ -179,9 +179,10 @@ void add_map_commands(CLI::App& app) {
         "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
         "(default 2)");
     b->add_option("--variants", build->params.variants,
-                  "cell images per combination of corner colours, 1 or 2: with 2 the cells "
-                  "across an edge never show the same image (default 2 for cells over 320 px whose "
-                  "set copies its source more than once, else 1)");
+                  "cell images per combination of corner colours, 1 or 2: with 2 a cell shows "
+                  "the second where a neighbour has its combination, so no two cells across an "
+                  "edge show the same image and few across a vertex (default 2, but 1 for grain "
+                  "under 8 px in cells up to 320 px)");
     b->add_option("--patches", build->params.patches,
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,

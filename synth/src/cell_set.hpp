@@ -38,8 +38,9 @@ struct CellSetParams {
     cv::Size cell;
     int corner_colours = 2;  // K: K^4 combinations of corner colours
     // V images per combination, K^4 V in all (corner_colours.hpp). Each variant is quilted as
-    // the first, with the same frame (its corners' strips) and its own inside. 0: 2, but 1 for
-    // fine grain in cells up to kLargeCell (build.hpp says why).
+    // the first, with the same frame (its corners' strips) and its own inside. 0: 2 for cells up
+    // to kLargeCell but fine grain (build.hpp says why) and for large cells; 1 for cells over
+    // kLargeCell from a source they copy less than once.
     int variants = 0;
     // The exemplar's structures are a few px (grain.hpp): see `variants`.
     bool fine_grain = false;

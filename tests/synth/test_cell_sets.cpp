@@ -396,12 +396,18 @@ TEST_CASE("by default a set has two variants, but one for fine grain in cells up
     CHECK(of_coarse.variants == 2);
     CHECK(of_coarse.cell_images.size() == 32);
     CHECK(of_coarse.variant_rule == TextureMap::VariantRule::break_twins);
-    // Cells over kLargeCell (320 px) get two whatever the grain; so do cells given by --cell,
-    // whose grain is not measured.
+    // Cells over kLargeCell (320 px) that copy their source more than once get two whatever
+    // the grain; so do cells given by --cell, whose grain is not measured.
     p.cell_size = 336;
     CHECK(build_texture_map(fine, p).variants == 2);
     p.cell_size = 320;
     CHECK(build_texture_map(fine, p).variants == 2);
+    // Cells over kLargeCell from a source their 16 images cover less than once (a slab scan)
+    // keep one: there two lost the stone's contrast.
+    p.cell_size = 336;
+    const TextureMap slab = build_texture_map(grey_grain(1400, 9), p);
+    CHECK(slab.variants == 1);
+    CHECK(slab.cell_images.size() == 16);
 }
 
 TEST_CASE("the two variants of a small source's set differ, the first as one variant builds it",

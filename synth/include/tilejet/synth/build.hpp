@@ -27,7 +27,10 @@ struct BuildParams {
     // second only where a neighbour has its combination (TextureMap::VariantRule): with one,
     // about two cells in five touched a copy of themselves, the motif doubled that the eye and
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
-    // 0: default, 2, but 1 for fine grain (under kFineGrain px) in cells of up to 320 px. By
+    // 0: default, 2, but 1 for fine grain (under kFineGrain px) in cells of up to 320 px and
+    // for cells over 320 px from a source they copy less than once (slab scans over about
+    // 2600 px: an 8192 px slab's texture energy 1.64 times quilting's with two, 1.21 with one,
+    // its wall calmer, the stone's contrast lost). By
     // measurement over four map seeds of the corpus (session 21): two variants brought the
     // worst periodicity of each design under the gate on all but marble (1.55: a twin across a
     // vertex the rule leaves; before, six failed, up to 3.22), texture energy about the
