@@ -182,7 +182,8 @@ void add_map_commands(CLI::App& app) {
                   "cell images per combination of corner colours, 1 or 2: with 2 a cell shows "
                   "the second where a neighbour has its combination, so no two cells across an "
                   "edge show the same image and few across a vertex (default 2, but 1 for grain "
-                  "under 8 px in cells up to 320 px)");
+                  "under 8 px in cells up to 320 px, and for cells over 320 px from a source "
+                  "their set copies less than once)");
     b->add_option("--patches", build->params.patches,
                   "patches kept per cell image (default 600 for one cell image, 32 in a set)");
     b->add_option("--candidates", build->params.candidates,

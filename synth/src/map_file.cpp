@@ -232,6 +232,11 @@ void read_overlaps(Reader& r, PatchSet& set) {
         word = r.le<uint64_t>("overlap bits");
 }
 
+// Only a set of two variants that does not show them by parity records its rule (version 3).
+bool records_variant_rule(const TextureMap& map) {
+    return map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity;
+}
+
 std::vector<Section> content_sections(const TextureMap& map) {
     std::vector<Section> out;
     {
@@ -254,8 +259,7 @@ std::vector<Section> content_sections(const TextureMap& map) {
         // Only sets of variants carry it, so that sets of one image per combination keep their id.
         if (map.variants > 1) w.le<uint32_t>(uint32_t(map.variants));
         // Likewise only sets whose variants break twins: parity maps keep their id.
-        if (map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity)
-            w.le<uint32_t>(uint32_t(map.variant_rule));
+        if (records_variant_rule(map)) w.le<uint32_t>(uint32_t(map.variant_rule));
         out.push_back({"CSET", 0, std::move(w.bytes)});
     }
     // Likewise only maps that know their size: the id of a map built without stays what it was.
@@ -320,7 +324,7 @@ void assign_map_id(TextureMap& map) {
 }
 
 uint32_t format_version_of(const TextureMap& map) {
-    return map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity ? 3 : 2;
+    return records_variant_rule(map) ? 3 : 2;
 }
 
 std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
