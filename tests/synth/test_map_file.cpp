@@ -222,6 +222,34 @@ TEST_CASE("damaged map files are refused with a message naming the file", "[mapf
         REQUIRE_THAT(load_error(dir, file_of(sections)),
                      Contains("PATA[0]") && Contains("ends before its 65535 patches"));
     }
+    SECTION("a variant rule on a set of one variant is refused, naming CSET") {
+        // What no tilejet writes (the rule is kept only with two variants): a version 3 file
+        // whose META counts the 16 images of one variant and whose CSET is K 2, V 1, rule 1.
+        // CSET is checked before any cell image is read.
+        const TextureMap& map = small_map();
+        std::string meta, cset;
+        put_le(meta, uint32_t(map.cell_width), 4), put_le(meta, uint32_t(map.cell_height), 4);
+        put_le(meta, 16, 4), put_le(meta, map.build.seed, 8);
+        for (int field = 0; field < 4; ++field)
+            put_le(meta, 64, 4);
+        put_le(meta, 0x4010000000000000ull, 8);  // 4.0 active patches per cell
+        put_le(cset, 2, 4), put_le(cset, 1, 4), put_le(cset, 1, 4);
+        auto sections = sections_of(good);
+        for (StoredSection& sec : sections)
+            if (sec.tag == "META") sec = {"META", 0, uint32_t(meta.size()), 0, meta};
+        sections.insert(sections.begin() + 1, {"CSET", 0, uint32_t(cset.size()), 0, cset});
+        REQUIRE_THAT(load_error(dir, file_of(sections, 3)),
+                     Contains(name) && Contains("CSET") &&
+                         Contains("variant rule 1 needs 2 variants, the map has 1"));
+        // The same file with two variants' worth of rule accepted as far as CSET: it then
+        // misses its other cell images, which shows the refusal above was the rule's.
+        std::string two = cset;
+        put_u32(two, 4, 2);
+        for (StoredSection& sec : sections)
+            if (sec.tag == "CSET") sec.payload = two;
+        REQUIRE_THAT(load_error(dir, file_of(sections, 3)),
+                     Contains("need 32 cell images, the map holds 16"));
+    }
     SECTION("a section twice is refused") {
         auto sections = sections_of(good);
         sections.push_back(sections.front());
