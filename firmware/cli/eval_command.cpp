@@ -18,6 +18,7 @@
 #include "commands.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/colour/exemplar_profile.hpp"
+#include "tilejet/quality/cell_place_repeat.hpp"
 #include "tilejet/quality/colour_match.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/quality/periodicity.hpp"
@@ -115,6 +116,9 @@ void print_summary(const quality::ReportPage& page, const std::filesystem::path&
                 quality::verdict(g.texture_energy_pass()));
     std::printf("  patch coverage            %s %%\n",
                 quality::gate_figure(g.patch_coverage * 100).c_str());
+    std::printf("  same place of the cell    %s %% along the borders, %s %% inside\n",
+                quality::gate_figure(g.cell_border_repeat * 100).c_str(),
+                quality::gate_figure(g.cell_inside_repeat * 100).c_str());
     if (!page.side_by_side.empty())
         std::printf("walls side by side: %s\n", (dir / "walls-side-by-side.png").c_str());
     std::printf("%-8s %11s %14s %12s %18s %10s %11s %10s\n", "method", "periodicity",
@@ -310,6 +314,13 @@ void run_eval(const EvalOptions& o) {
         tilejet = first;
     }
     page.gates = quality::quality_gates(section("tilejet"), section("quilt"), coverage);
+    progress.say("tilejet: the same place of the cell");
+    const quality::CellPlaceRepeat fold = quality::cell_place_repeat(map, spec.seed);
+    section("tilejet")["cell_place_repeat"] = {{"border", fold.border},
+                                               {"inside", fold.inside},
+                                               {"band_px", fold.band},
+                                               {"cells", fold.cells}};
+    page.gates.cell_border_repeat = fold.border, page.gates.cell_inside_repeat = fold.inside;
     progress.say("walls side by side");
     page.side_by_side_scale = quality::write_walls_side_by_side(corners, dir);
     for (const quality::NamedPicture& c : corners)

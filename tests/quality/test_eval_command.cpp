@@ -44,6 +44,12 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(gates["patch_coverage"] == coverage);
     CHECK(coverage > 0);
     CHECK(coverage < 1);
+    // The grid a fold by the cell size shows: in the gates as in tilejet's figures.
+    const auto& fold = m["tilejet"]["cell_place_repeat"];
+    CHECK(gates["cell_border_repeat"] == fold["border"]);
+    CHECK(gates["cell_inside_repeat"] == fold["inside"]);
+    CHECK(fold["inside"].get<double>() > 0);
+    CHECK(fold["border"].get<double>() <= 1);
     for (const char* method : {"tilejet", "canvas", "cell", "quilt"}) {
         INFO(method);
         REQUIRE(m.contains(method));

@@ -28,6 +28,8 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["pass"] = g.pass();
     j["limit"] = g.limit;
     j["patch_coverage"] = g.patch_coverage;
+    j["cell_border_repeat"] = g.cell_border_repeat;
+    j["cell_inside_repeat"] = g.cell_inside_repeat;
     return j;
 }
 

@@ -160,7 +160,13 @@ std::string gates_html(const ReportPage& page) {
     h << "<div class='gate'><div class='label'>patch coverage</div><div class='value'>"
       << gate_figure(g.patch_coverage * 100)
       << " %</div><div class='what'>share of tilejet's wall showing a patch; the rest shows the "
-         "cell image, which repeats with the cell lattice</div></div></div><p>Both gates pass at "
+         "cell image, which repeats with the cell lattice</div></div>"
+      << "<div class='gate'><div class='label'>same place of the cell</div><div class='value'>"
+      << gate_figure(g.cell_border_repeat * 100) << " % / "
+      << gate_figure(g.cell_inside_repeat * 100)
+      << " %</div><div class='what'>of tilejet's cells, how many show the same pixel at a place "
+         "of the cell: along the cell borders / inside them (the grid a wall folded by the "
+         "cell size shows)</div></div></div><p>Both gates pass at "
       << gate_figure(g.limit) << " or below (1 = as good as quilting every tile offline).</p>";
     return h.str();
 }

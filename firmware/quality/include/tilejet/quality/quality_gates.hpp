@@ -25,6 +25,10 @@ struct QualityGates {
     // Share of tilejet's wall covered by shown patches: not a gate, but what the gates depend
     // on most (whatever no patch covers repeats with the cell lattice).
     double patch_coverage = 0;
+    // Not gates either: per place of the cell, the share of cells showing the same pixel there,
+    // in the band along the cell borders and inside it (cell_place_repeat.hpp): the grid a wall
+    // folded by the cell size shows. Set by eval after quality_gates().
+    double cell_border_repeat = 0, cell_inside_repeat = 0;
 
     // A figure that could not be measured does not pass: the report cannot vouch for it.
     bool periodicity_pass() const { return periodicity && *periodicity <= limit; }

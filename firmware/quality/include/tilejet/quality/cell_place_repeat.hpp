@@ -1,0 +1,27 @@
+#pragma once
+
+// How often the plane shows the same thing at the same place of the cell (issue 16): the grid
+// a wall folded by the cell size shows. One cell image repeats everywhere no patch covers it;
+// a corner-coloured set varies its images, but the strips along the cell borders are shared by
+// every edge of their kind, one edge in K^2, and the band round the borders repeats on the grid
+// while the insides do not. Periodicity sees that only as part of one autocorrelation peak.
+
+#include <cstdint>
+
+#include "tilejet/synth/texture_map.hpp"
+
+namespace tilejet::quality {
+
+struct CellPlaceRepeat {
+    // Per place of the cell, the share of cells showing its most common pixel there, averaged
+    // over the band within `band` px of the cell's border and over the places inside it.
+    double border = 0, inside = 0;
+    int band = 0;   // px: a tenth of the cell's shorter side, a cell set's frame
+    int cells = 0;  // cells compared
+};
+
+// Renders the cells of the plane from the origin for job `seed`, 16 x 16 of them or fewer, so
+// that the region stays within 4096 px a side (at least 4 x 4 cells), and folds them.
+CellPlaceRepeat cell_place_repeat(const synth::TextureMap& map, uint64_t seed);
+
+}  // namespace tilejet::quality
