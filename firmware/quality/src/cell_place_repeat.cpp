@@ -11,6 +11,9 @@ namespace tilejet::quality {
 namespace {
 
 constexpr int kMostCells = 16, kFewestCells = 4, kMostSide = 4096;
+// Places looked at per cell side, at most: every place of cells up to this size, every
+// second, third... of larger ones, so that an 8192 px cell costs what a 256 px one does.
+constexpr int kMostPlaces = 256;
 
 }  // namespace
 
@@ -18,32 +21,45 @@ CellPlaceRepeat cell_place_repeat(const synth::TextureMap& map, uint64_t seed) {
     const int cw = map.cell_width, ch = map.cell_height;
     const int across = std::clamp(kMostSide / cw, kFewestCells, kMostCells);
     const int down = std::clamp(kMostSide / ch, kFewestCells, kMostCells);
-    const cv::Mat plane = synth::render_region(map, seed, {0, 0, across * cw, down * ch});
-    const size_t bytes = plane.elemSize();  // 3 for R,G,B, 4 for C,M,Y,K: one uint32 each
+    const int step = (std::max(cw, ch) + kMostPlaces - 1) / kMostPlaces;
+    std::vector<int> us, vs;
+    for (int u = 0; u < cw; u += step)
+        us.push_back(u);
+    for (int v = 0; v < ch; v += step)
+        vs.push_back(v);
     CellPlaceRepeat r;
     r.cells = across * down;
     r.band = std::max(1, std::min(cw, ch) / 10);
-    std::vector<uint32_t> values(size_t(r.cells));
+    // Cell by cell, as sampling runs fastest (a cell's patches stay at hand): per place, the
+    // cells' pixels, 3 bytes of R,G,B or 4 of C,M,Y,K in one uint32 each.
+    const size_t places = us.size() * vs.size(), bytes = map.source.elemSize();
+    std::vector<uint32_t> seen(places * size_t(r.cells));
+    synth::Sampler sampler(map, seed);
+    for (int j = 0, cell = 0; j < down; ++j)
+        for (int i = 0; i < across; ++i, ++cell)
+            for (size_t b = 0; b < vs.size(); ++b)
+                for (size_t a = 0; a < us.size(); ++a) {
+                    uint32_t value = 0;
+                    std::memcpy(&value,
+                                sampler.pixel(int64_t(i) * cw + us[a], int64_t(j) * ch + vs[b]),
+                                bytes);
+                    seen[(b * us.size() + a) * size_t(r.cells) + size_t(cell)] = value;
+                }
     double border = 0, inside = 0;
     int64_t border_places = 0, inside_places = 0;
-    for (int v = 0; v < ch; ++v)
-        for (int u = 0; u < cw; ++u) {
-            size_t n = 0;
-            for (int j = 0; j < down; ++j)
-                for (int i = 0; i < across; ++i) {
-                    uint32_t value = 0;
-                    std::memcpy(&value, plane.ptr<uint8_t>(j * ch + v) + bytes * size_t(i * cw + u),
-                                bytes);
-                    values[n++] = value;
-                }
-            std::sort(values.begin(), values.end());
-            size_t most = 1;
-            for (size_t a = 0, b = 0; a < n; a = b) {
-                while (b < n && values[b] == values[a])
-                    ++b;
-                most = std::max(most, b - a);
+    for (size_t b = 0; b < vs.size(); ++b)
+        for (size_t a = 0; a < us.size(); ++a) {
+            const auto first = seen.begin() + std::ptrdiff_t((b * us.size() + a) * size_t(r.cells));
+            const auto last = first + r.cells;
+            std::sort(first, last);
+            std::ptrdiff_t most = 1;
+            for (auto x = first, y = first; x != last; x = y) {
+                while (y != last && *y == *x)
+                    ++y;
+                most = std::max(most, y - x);
             }
-            const double share = double(most) / double(n);
+            const double share = double(most) / double(r.cells);
+            const int u = us[a], v = vs[b];
             const bool in_band = u < r.band || v < r.band || u >= cw - r.band || v >= ch - r.band;
             (in_band ? border : inside) += share;
             ++(in_band ? border_places : inside_places);

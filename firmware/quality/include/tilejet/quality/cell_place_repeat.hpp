@@ -20,8 +20,9 @@ struct CellPlaceRepeat {
     int cells = 0;  // cells compared
 };
 
-// Renders the cells of the plane from the origin for job `seed`, 16 x 16 of them or fewer, so
-// that the region stays within 4096 px a side (at least 4 x 4 cells), and folds them.
+// Samples the cells of the plane from the origin for job `seed`, 16 x 16 of them or fewer, so
+// that they stay within 4096 px a side (at least 4 x 4 cells), and folds them: every place of
+// cells up to 256 px, places a few px apart in larger ones (up to 256 a side).
 CellPlaceRepeat cell_place_repeat(const synth::TextureMap& map, uint64_t seed);
 
 }  // namespace tilejet::quality
