@@ -16,7 +16,9 @@ struct CellPlaceRepeat {
     // Per place of the cell, the share of cells showing its most common pixel there, averaged
     // over the band within `band` px of the cell's border and over the places inside it.
     double border = 0, inside = 0;
-    int band = 0;   // px: a tenth of the cell's shorter side, a cell set's frame
+    // px: a tenth of the cell's shorter side, at least 1: a cell set's frame (which is at
+    // least 3 px) for cells of 30 px and more.
+    int band = 0;
     int cells = 0;  // cells compared
 };
 
