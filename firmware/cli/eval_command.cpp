@@ -236,8 +236,9 @@ void run_eval(const EvalOptions& o) {
     progress.say("loading");
     const synth::TextureMap map = synth::load_texture_map(o.map);
     Shared shared;
-    // The map keeps its source, which is the exemplar itself whenever the exemplar was at
-    // least twice the cell size (else a quilted enlargement of it): --exemplar says for sure.
+    // The map keeps its source, which is the exemplar itself whenever the exemplar was large
+    // enough (docs/design.md section 2.3; else a quilted enlargement of it): --exemplar says
+    // for sure.
     shared.exemplar = o.exemplar.empty() ? map.source : colour::load_exemplar(o.exemplar);
     const bool source_is_exemplar = o.exemplar.empty() &&
                                     map.source.cols == map.build.exemplar_width &&

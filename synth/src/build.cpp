@@ -297,8 +297,19 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     const QuiltParams quilt{std::max(8, cell / 4), std::max(2, std::max(8, cell / 4) / 6), 0.1,
                             lattice ? &*lattice : nullptr};
 
-    // Patches need room around them in the source; small exemplars are enlarged first.
-    if (exemplar.cols < 2 * cell_size.width || exemplar.rows < 2 * cell_size.height) {
+    // The source is what cell images, strips and patches copy from: the exemplar itself
+    // wherever it is large enough. A one-image map's patches need room around them in the
+    // source: two cells. A set needs a cell and its frame; enlarged to two cells anyway, the
+    // corpus's 384 px exemplars became quilts of their own calmest parts (marble's veins gave
+    // way to rows of one small motif, limestone lost its cracks), and the set copied that
+    // (docs/design.md section 2.3). On a lattice the quilt moves whole lattice periods and
+    // loses little, and a source of two cells offers the cells' blocks more places in phase:
+    // from a 300 px course texture itself (cells 166 px high) the courses ran on across 0.798
+    // of the cell borders, under the 0.8 the lattice test asks for.
+    const cv::Size needed = corner_colours == 1 || lattice
+                                ? cv::Size(2 * cell_size.width, 2 * cell_size.height)
+                                : CellSet::smallest_source(cell_size);
+    if (exemplar.cols < needed.width || exemplar.rows < needed.height) {
         if (progress) progress("source image", 0, 1);
         Rng source_rng(hash_combine(params.seed, kSourceStream));
         // A multiple of the cell size, so that the enlargement wraps on the lattice too.

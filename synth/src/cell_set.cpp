@@ -123,7 +123,18 @@ std::vector<std::pair<int, int>> block_spans(int begin, int end, int block, int 
     return spans;
 }
 
+// Half the width of a strip: the frame's share of each cell along an edge (why a tenth: the
+// constructor).
+int frame_width(cv::Size cell) {
+    return std::max(3, std::min(cell.width, cell.height) / 10);
+}
+
 }  // namespace
+
+cv::Size CellSet::smallest_source(cv::Size cell) {
+    const int w = frame_width(cell);
+    return {cell.width + 2 * w + 2, cell.height + 2 * w + 2};
+}
 
 CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params)
     : source_rgb_(source_rgb),
@@ -163,11 +174,12 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         block_ = cv::Size(std::max(8, cw_ * 3 / 4), std::max(8, ch_ * 3 / 4));
         overlap_ = std::max(2, std::min(block_.width, block_.height) / 4);
     }
-    w_ = std::max(3, side / 10);
+    w_ = frame_width(params.cell);
     strip_block_ = std::max(cw_, ch_) + 2 * w_;
     strip_overlap_ = std::max(2, side / 16);
     c_ = std::max(2, w_ / 3);
-    if (source_rgb.cols < cw_ + 2 * w_ + 2 || source_rgb.rows < ch_ + 2 * w_ + 2)
+    if (const cv::Size least = smallest_source(params.cell);
+        source_rgb.cols < least.width || source_rgb.rows < least.height)
         throw SynthError("the source is too small for a cell set of this cell size");
 
     cv::Scalar mean, deviation;
