@@ -90,4 +90,8 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     const std::string log((std::istreambuf_iterator<char>(log_in)),
                           std::istreambuf_iterator<char>());
     CHECK(log.starts_with("gates (limit 1.2"));
+    // What the gates were measured against, beside them: small_map()'s source is its exemplar
+    // (a quilted enlargement would hide what the quilt lost).
+    CHECK(log.find("measured against          the map's source, which is the exemplar itself") <
+          log.find("periodicity"));
 }
