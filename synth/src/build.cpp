@@ -367,8 +367,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         // texture energy on ten designs of eleven (docs/design.md section 2.4).
         const CutLevels cuts = enlargement >= 2 ? CutLevels::Auto : CutLevels::Whole;
         const CellSet set(map.source, source_lab,
-                          {cell_size, corner_colours, params.variants,
-                           grain > 0 && grain < BuildParams::kFineGrain, params.seed, threads,
+                          {cell_size, corner_colours, params.variants, params.seed, threads,
                            lattice ? &*lattice : nullptr, feather, cuts});
         map.corner_colours = corner_colours, map.variants = set.variants();
         if (map.variants > 1) map.variant_rule = TextureMap::VariantRule::break_twins;

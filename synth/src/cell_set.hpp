@@ -32,6 +32,9 @@ namespace tilejet::synth::detail {
 struct Placement {
     cv::Rect at;
     cv::Point source;
+    // False when the block had pixels to match and no window to match them with, and went in
+    // at random.
+    bool matched = true;
 };
 
 struct CellSetParams {
@@ -39,11 +42,9 @@ struct CellSetParams {
     int corner_colours = 2;  // K: K^4 combinations of corner colours
     // V images per combination, K^4 V in all (corner_colours.hpp). Each variant is quilted as
     // the first, with the same frame (its corners' strips) and its own inside. 0: 2 for cells up
-    // to kLargeCell but fine grain (build.hpp says why) and for large cells; 1 for cells over
-    // kLargeCell from a source they copy less than once.
+    // to kLargeCell and for large cells; 1 for cells over kLargeCell from a source they copy
+    // less than once (build.hpp says why).
     int variants = 0;
-    // The exemplar's structures are a few px (grain.hpp): see `variants`.
-    bool fine_grain = false;
     uint64_t seed = 1;
     int threads = 0;
     // Near-regular exemplars: every block and strip copies from a lattice translation (+-3 px)
@@ -84,6 +85,8 @@ class CellSet {
     // where two overlapped, sampling and region rendering disagreed. Cells never overlap, and
     // the frame already makes their borders seamless.
     bool may_hold_patch(int x, int y) const { return x >= 0 && y >= 0 && x < cw_ && y < ch_; }
+    // Blocks of the images that went in at random (Placement::matched): none, whatever the set.
+    size_t unmatched_blocks() const { return unmatched_blocks_; }
 
   private:
     void choose_corner_blocks(const cv::Mat& source_z2);
@@ -100,6 +103,7 @@ class CellSet {
     int k_, cw_, ch_, w_, c_, overlap_, strip_block_, strip_overlap_;
     cv::Size block_;  // the blocks cells are quilted with
     double usage_weight_ = 0;
+    double same_place_weight_ = 0;
     // How far each source pixel stands out from the source's mean colour, as a match cost.
     cv::Mat conspicuous_;  // large cells only
     // Cells over kLargeCell that copy their source more than once: conspicuous cost, wide search.
@@ -109,6 +113,7 @@ class CellSet {
     // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.
     std::vector<cv::Mat> horizontal_, vertical_;
     std::vector<cv::Mat> images_;
+    size_t unmatched_blocks_ = 0;
 };
 
 }  // namespace tilejet::synth::detail

@@ -27,19 +27,18 @@ struct BuildParams {
     // second only where a neighbour has its combination (TextureMap::VariantRule): with one,
     // about two cells in five touched a copy of themselves, the motif doubled that the eye and
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
-    // 0: default, 2, but 1 for fine grain (under kFineGrain px) in cells of up to 320 px and
-    // for cells over 320 px from a source they copy less than once (slab scans over about
-    // 2600 px: an 8192 px slab's texture energy 1.64 times quilting's with two, 1.21 with one,
-    // its wall calmer, the stone's contrast lost). By
-    // measurement over four map seeds of the corpus (session 21): two variants brought the
-    // worst periodicity of each design under the gate on all but marble (1.55: a twin across a
-    // vertex the rule leaves; before, six failed, up to 3.22), texture energy about the
-    // same on coarse designs but up on fine ones, whose second variant, copied from what the
-    // first left of a 512 px source, cut more grains (gravel 1.26 against 1.20 on average,
-    // granite 1.19 against 1.15), and a twin of fine grain has no landmark for the eye to
-    // find. Twice the build time where there are two.
+    // 0: default, 2, but 1 for cells over 320 px from a source they copy less than once (slab
+    // scans over about 2600 px: an 8192 px slab's texture energy 1.64 times quilting's with
+    // two, 1.21 with one, its wall calmer, the stone's contrast lost). By measurement over four
+    // map seeds of the corpus (session 21): two variants brought the worst periodicity of each
+    // design under the gate on all but marble (before, six failed, up to 3.22). Fine grain
+    // (granite, gravel, terrazzo) kept one until session 24, measured when its second variant
+    // was copied from what the first left of a 512 px enlargement and cut more grains; copied
+    // from the design, with every block matched, one variant left granite's and terrazzo's
+    // twins across a vertex whole (periodicity 2.92 and 3.61, 1.55 and 3.47 at map seeds 1 and
+    // 2; 1.04 and 1.31, 0.90 and 0.59 with two), gravel's texture energy the same. Twice the
+    // build time where there are two.
     int variants = 0;
-    static constexpr double kFineGrain = 8;
     // P per cell image: the best P candidates are kept and split into A and B.
     // 0: default (600 for a single cell image, 32 per image of a set).
     int patches = 0;
