@@ -366,8 +366,13 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         // from 192 px (cell blocks of 256 px cells, their largest patches) cost 1 to 7 % of
         // texture energy on ten designs of eleven (docs/design.md section 2.4).
         const CutLevels cuts = enlargement >= 2 ? CutLevels::Auto : CutLevels::Whole;
+        // On a lattice of fine courses (a few px, as the tests' synthetic courses) one variant,
+        // as for all fine grain before session 24: with two, and every block matched, the
+        // rendered courses read as a two-way lattice (tests/synth/test_lattice.cpp).
+        const int variants =
+            params.variants == 0 && lattice && grain > 0 && grain < 8 ? 1 : params.variants;
         const CellSet set(map.source, source_lab,
-                          {cell_size, corner_colours, params.variants, params.seed, threads,
+                          {cell_size, corner_colours, variants, params.seed, threads,
                            lattice ? &*lattice : nullptr, feather, cuts});
         map.corner_colours = corner_colours, map.variants = set.variants();
         if (map.variants > 1) map.variant_rule = TextureMap::VariantRule::break_twins;

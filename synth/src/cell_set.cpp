@@ -204,7 +204,8 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         z2 = (channels[0] + channels[1] + channels[2]) / variance;
     }
     usage_weight_ = kUsageCost * variance;
-    same_place_weight_ = kSamePlaceCost * variance;
+    // On a lattice the ban stays (quilt_block()).
+    same_place_weight_ = params.lattice ? 0.0 : kSamePlaceCost * variance;
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
     // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
     // its own account of what it copied (below).
@@ -424,12 +425,31 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 }
         }
     }
-    OffsetSearch search{
-        source_lab,
-        [&](cv::Point corner) { return !lattice || lattice->allows(corner - rect.tl() - origin); },
-        std::max(4, overlap / 2),
-        canvas.wide_search ? std::max(kSearchWindow, 2 * std::max(rect.width, rect.height))
-                           : kSearchWindow};
+    // On a lattice windows at the same place are banned outright, as for every set until
+    // session 24: the cost above left the best-fitting copy among the few lattice windows a
+    // block has, cells' insides repeated with the cells, and the wall of courses read as a
+    // two-way lattice (tests/synth/test_lattice.cpp).
+    cv::Mat forbidden;
+    if (lattice && canvas.avoid) {
+        const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
+        for (const Placement& p : *canvas.avoid) {
+            const cv::Point d = p.at.tl() - rect.tl();
+            if (std::max(std::abs(d.x), std::abs(d.y)) >= same_place) continue;
+            if (forbidden.empty()) forbidden = cv::Mat::zeros(source_lab.size(), CV_8U);
+            const cv::Rect around(p.source - cv::Point(same_place - 1, same_place - 1),
+                                  cv::Size(2 * same_place - 1, 2 * same_place - 1));
+            forbidden(around & cv::Rect({0, 0}, source_lab.size())).setTo(255);
+        }
+    }
+    OffsetSearch search{source_lab,
+                        [&](cv::Point corner) {
+                            return (forbidden.empty() || !forbidden.at<uint8_t>(corner)) &&
+                                   (!lattice || lattice->allows(corner - rect.tl() - origin));
+                        },
+                        std::max(4, overlap / 2),
+                        canvas.wide_search
+                            ? std::max(kSearchWindow, 2 * std::max(rect.width, rect.height))
+                            : kSearchWindow};
     if (!penalty.empty()) search.penalty = &penalty;
     // How much of what is conspicuous in the source a window at `corner` would copy.
     const auto conspicuous_in = [&](cv::Point corner) {
