@@ -36,8 +36,9 @@ struct BuildParams {
     // was copied from what the first left of a 512 px enlargement and cut more grains; copied
     // from the design, with every block matched, one variant left granite's and terrazzo's
     // twins across a vertex whole (periodicity 2.92 and 3.61, 1.55 and 3.47 at map seeds 1 and
-    // 2; 1.04 and 1.31, 0.90 and 0.59 with two), gravel's texture energy the same. Twice the
-    // build time where there are two.
+    // 2; 1.04 and 1.31, 0.90 and 0.59 with two), gravel's texture energy the same; but still
+    // one on a lattice of fine courses, whose courses read as a two-way lattice with two.
+    // Twice the build time where there are two.
     int variants = 0;
     // P per cell image: the best P candidates are kept and split into A and B.
     // 0: default (600 for a single cell image, 32 per image of a set).
