@@ -369,8 +369,10 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         // On a lattice of fine courses (a few px, as the tests' synthetic courses) one variant,
         // as for all fine grain before session 24: with two, and every block matched, the
         // rendered courses read as a two-way lattice (tests/synth/test_lattice.cpp).
-        const int variants =
-            params.variants == 0 && lattice && grain > 0 && grain < 8 ? 1 : params.variants;
+        constexpr double kFineCourses = 8;  // px: grain.hpp's measure, as before session 24
+        const int variants = params.variants == 0 && lattice && grain > 0 && grain < kFineCourses
+                                 ? 1
+                                 : params.variants;
         const CellSet set(map.source, source_lab,
                           {cell_size, corner_colours, variants, params.seed, threads,
                            lattice ? &*lattice : nullptr, feather, cuts});

@@ -204,8 +204,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         z2 = (channels[0] + channels[1] + channels[2]) / variance;
     }
     usage_weight_ = kUsageCost * variance;
-    // On a lattice the ban stays (quilt_block()).
-    same_place_weight_ = params.lattice ? 0.0 : kSamePlaceCost * variance;
+    same_place_weight_ = kSamePlaceCost * variance;  // on a lattice a ban (quilt_block())
     // How many times over the set's images cover the source: the demo design at 360 dpi covers
     // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
     // its own account of what it copied (below).
@@ -404,15 +403,27 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // texture at the same place of two cells: it costs in proportion to how much of the block
     // would coincide, falling to nothing `same_place` px off (a window's half). A hard ban of
     // those windows left no window at all for three blocks in five on the corpus's 384 px
-    // designs (32 images of four blocks each), and those blocks went in at random.
-    if (canvas.avoid && canvas.same_place_weight > 0) {
+    // designs (32 images of four blocks each), and those blocks went in at random. On a lattice
+    // the ban stays, as for every set until session 24: with the cost the best-fitting copy
+    // stayed among the few lattice windows a block has, cells' insides repeated with the cells,
+    // and a wall of courses read as a two-way lattice (tests/synth/test_lattice.cpp).
+    cv::Mat forbidden;
+    if (canvas.avoid) {
         const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
         const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
-        if (penalty.empty()) penalty = cv::Mat::zeros(py, px, CV_32F);
         const double full = canvas.same_place_weight * cv::sum(mask)[0];
         for (const Placement& p : *canvas.avoid) {
             const cv::Point d = p.at.tl() - rect.tl();
             if (std::max(std::abs(d.x), std::abs(d.y)) >= same_place) continue;
+            if (lattice) {
+                if (forbidden.empty()) forbidden = cv::Mat::zeros(source_lab.size(), CV_8U);
+                const cv::Rect around(p.source - cv::Point(same_place - 1, same_place - 1),
+                                      cv::Size(2 * same_place - 1, 2 * same_place - 1));
+                forbidden(around & cv::Rect({0, 0}, source_lab.size())).setTo(255);
+                continue;
+            }
+            if (full <= 0) continue;
+            if (penalty.empty()) penalty = cv::Mat::zeros(py, px, CV_32F);
             const double shared = double((p.at & rect).area()) / double(rect.area());
             // The window that would show p's copy at the very same place.
             const cv::Point e = p.source - d;
@@ -423,22 +434,6 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                     penalty.at<float>(y, x) +=
                         float(full * shared * (1.0 - double(off) / same_place));
                 }
-        }
-    }
-    // On a lattice windows at the same place are banned outright, as for every set until
-    // session 24: the cost above left the best-fitting copy among the few lattice windows a
-    // block has, cells' insides repeated with the cells, and the wall of courses read as a
-    // two-way lattice (tests/synth/test_lattice.cpp).
-    cv::Mat forbidden;
-    if (lattice && canvas.avoid) {
-        const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
-        for (const Placement& p : *canvas.avoid) {
-            const cv::Point d = p.at.tl() - rect.tl();
-            if (std::max(std::abs(d.x), std::abs(d.y)) >= same_place) continue;
-            if (forbidden.empty()) forbidden = cv::Mat::zeros(source_lab.size(), CV_8U);
-            const cv::Rect around(p.source - cv::Point(same_place - 1, same_place - 1),
-                                  cv::Size(2 * same_place - 1, 2 * same_place - 1));
-            forbidden(around & cv::Rect({0, 0}, source_lab.size())).setTo(255);
         }
     }
     OffsetSearch search{source_lab,
