@@ -1,13 +1,17 @@
 #include "fixtures.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/map_file.hpp"
 
 namespace tilejet::test {
 
@@ -17,8 +21,48 @@ const cv::Mat& demo_exemplar() {
     return exemplar;
 }
 
+namespace {
+
+// A map built by this very test program: CTest runs every test case in a process of its own,
+// and some thirty of them start from small_map(), which takes 2 s to build (20 s under the
+// sanitizers). The first process to need it saves it beside the program; the others load it.
+// The file is only trusted from a program with the same path, size and modification time (a
+// rebuild of any synth code relinks the program), and is written under a temporary name and
+// renamed, so processes running side by side never read half a file. Saving and loading are
+// lossless (test_map_file.cpp).
+synth::TextureMap built_once(const std::string& name,
+                             const std::function<synth::TextureMap()>& build) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) return build();
+    const auto size = fs::file_size(self, ec);
+    if (ec) return build();
+    const auto stamp = fs::last_write_time(self, ec).time_since_epoch().count();
+    const fs::path dir = TILEJET_FIXTURE_CACHE_DIR;
+    fs::create_directories(dir, ec);
+    if (ec) return build();
+    const fs::path cached = dir / (self.filename().string() + "." + name + "." +
+                                   std::to_string(size) + "-" + std::to_string(stamp) + ".tjmap");
+    if (fs::exists(cached, ec)) return synth::load_texture_map(cached);
+    synth::TextureMap map = build();
+    const fs::path partial = cached.string() + "." + std::to_string(::getpid()) + ".part";
+    synth::save_texture_map(map, partial);
+    fs::rename(partial, cached, ec);
+    // Maps of earlier builds of the program are of no more use.
+    const std::string prefix = self.filename().string() + "." + name + ".";
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        const std::string file = entry.path().filename().string();
+        if (file.starts_with(prefix) && file.ends_with(".tjmap") && entry.path() != cached)
+            fs::remove(entry.path(), ec);
+    }
+    return map;
+}
+
+}  // namespace
+
 const synth::TextureMap& small_map() {
-    static const synth::TextureMap map = [] {
+    static const synth::TextureMap map = built_once("small_map", [] {
         synth::BuildParams params;
         params.corner_colours = 1;  // the one-image map whose tests came before cell sets
         params.cell_size = 64;
@@ -26,7 +70,7 @@ const synth::TextureMap& small_map() {
         params.candidates = 3200;
         params.seed = 11;
         return synth::build_texture_map(demo_exemplar(), params);
-    }();
+    });
     return map;
 }
 

@@ -603,7 +603,7 @@ TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
         Catch::Contains("crafted.tjmap") && Catch::Contains("of a cell set leaves its cell"));
 }
 
-TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_set][slab]") {
+TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_set][slab][heavy]") {
     // Calm grey grain with one white disc: what a set copies of the disc recurs wherever its
     // cell image or strip does, at the same place of one cell in 16 (a strip's: a quarter of
     // all edges, K = 2). Large cells only (cell_set.cpp, kLargeCell): the 320 px and smaller
@@ -638,7 +638,7 @@ TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_se
     CHECK(images_with_disc == 0);
 }
 
-TEST_CASE("the corner cores of a small-celled set hold no fleck", "[cell_set]") {
+TEST_CASE("the corner cores of a small-celled set hold no fleck", "[cell_set][heavy]") {
     // Grey grain strewn with white flecks, a tenth of the surface: half of all random cores
     // would hold one. A core shows whole at every vertex of its colour (half of them, K = 2),
     // and marble's one white fleck in a core drew a grid of dots (map seed 4). The four

@@ -80,7 +80,7 @@ TEST_CASE("white noise and marble are stochastic", "[lattice]") {
 }
 
 TEST_CASE("a lattice-aware map keeps the exemplar's lattice at four times its size",
-          "[lattice][build]") {
+          "[lattice][build][heavy]") {
     const Basis brick{{40, 0}, {20, 17}};
     const cv::Mat exemplar = make_lattice_texture(brick, {233, 191}, 4);
     BuildParams p;
@@ -210,7 +210,7 @@ TEST_CASE("a map of brick courses keeps the courses running across cells",
 // Slab scans are analysed at most 2048 px across (an FFT of the whole would take gigabytes),
 // and their lattice fitted back to the full image to the pixel.
 TEST_CASE("the lattice of a slab-scan-sized exemplar is found to the pixel from a smaller copy",
-          "[lattice][slab]") {
+          "[lattice][slab][heavy]") {
     const cv::Size size(4300, 2300);  // analysed 2.1 times smaller
     const Basis brick{{440, 0}, {220, 187}};
     const Lattice l = detect_lattice(make_lattice_texture(brick, size, 5, false));
