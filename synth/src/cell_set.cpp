@@ -369,10 +369,11 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // Sources already copied often cost more: best matches alone favour the few calm places
     // of a source that fit anything, and a set of them shows one motif over and over while
     // the source's veins and grains go missing.
-    cv::Mat penalty;
-    if (canvas.usage) {
-        cv::Mat used = canvas.usage->clone();
-        count_uses(used, canvas.placed);
+    const auto add_usage_cost = [&](const cv::Rect& area, cv::Mat& penalty) {
+        cv::Mat used = (*canvas.usage)(area).clone();
+        for (const Placement& p : canvas.placed)
+            if (const cv::Rect r = cv::Rect(p.source, p.at.size()) & area; !r.empty())
+                used(r - area.tl()) += 1;
         // Uses count per pixel of the overlap (the match's sum runs over it); a conspicuous
         // pixel counts whole (it shows wherever the window's copy does).
         const double per_use = canvas.usage_weight * cv::sum(mask)[0] / double(rect.area());
@@ -384,21 +385,19 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             // they pushed blocks off the vein's continuation, and cuts ran straight across it).
             const cv::Mat& others =
                 canvas.conspicuous_uses ? *canvas.conspicuous_uses : *canvas.usage;
-            cost = per_use * used + canvas.conspicuous->mul(others + 1);
+            cost = per_use * used + (*canvas.conspicuous)(area).mul(others(area) + 1);
             scale = 1;
         }
         cv::Mat sums;
         cv::integral(cost, sums, CV_64F);
-        const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
-        penalty.create(py, px, CV_32F);
-        for (int y = 0; y < py; ++y)
-            for (int x = 0; x < px; ++x) {
+        for (int y = 0; y < penalty.rows; ++y)
+            for (int x = 0; x < penalty.cols; ++x) {
                 const double s = sums.at<double>(y + rect.height, x + rect.width) -
                                  sums.at<double>(y, x + rect.width) -
                                  sums.at<double>(y + rect.height, x) + sums.at<double>(y, x);
                 penalty.at<float>(y, x) = float(scale * s);
             }
-    }
+    };
     // A window copied to the same place of the cell as an earlier image's block shows the same
     // texture at the same place of two cells: it costs in proportion to how much of the block
     // would coincide, falling to nothing `same_place` px off (a window's half). A hard ban of
@@ -407,10 +406,14 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // the ban stays, as for every set until session 24: with the cost the best-fitting copy
     // stayed among the few lattice windows a block has, cells' insides repeated with the cells,
     // and a wall of courses read as a two-way lattice (tests/synth/test_lattice.cpp).
+    struct SamePlace {
+        cv::Point window;  // the window that would show the earlier copy at the very same place
+        double cost;       // its cost; less the farther a window is from it
+    };
+    std::vector<SamePlace> same_places;
+    const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
     cv::Mat forbidden;
     if (canvas.avoid) {
-        const int same_place = std::max(4, std::min(rect.width, rect.height) / 2);
-        const int px = source_lab.cols - rect.width + 1, py = source_lab.rows - rect.height + 1;
         const double full = canvas.same_place_weight * cv::sum(mask)[0];
         for (const Placement& p : *canvas.avoid) {
             const cv::Point d = p.at.tl() - rect.tl();
@@ -423,19 +426,22 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 continue;
             }
             if (full <= 0) continue;
-            if (penalty.empty()) penalty = cv::Mat::zeros(py, px, CV_32F);
             const double shared = double((p.at & rect).area()) / double(rect.area());
-            // The window that would show p's copy at the very same place.
-            const cv::Point e = p.source - d;
-            for (int y = std::max(0, e.y - same_place + 1); y < std::min(py, e.y + same_place); ++y)
-                for (int x = std::max(0, e.x - same_place + 1); x < std::min(px, e.x + same_place);
-                     ++x) {
-                    const int off = std::max(std::abs(x - e.x), std::abs(y - e.y));
-                    penalty.at<float>(y, x) +=
-                        float(full * shared * (1.0 - double(off) / same_place));
-                }
+            same_places.push_back({p.source - d, full * shared});
         }
     }
+    const auto add_same_place_cost = [&](const cv::Rect& area, cv::Mat& penalty) {
+        for (const SamePlace& sp : same_places) {
+            const cv::Point e = sp.window - area.tl();
+            for (int y = std::max(0, e.y - same_place + 1);
+                 y < std::min(penalty.rows, e.y + same_place); ++y)
+                for (int x = std::max(0, e.x - same_place + 1);
+                     x < std::min(penalty.cols, e.x + same_place); ++x) {
+                    const int off = std::max(std::abs(x - e.x), std::abs(y - e.y));
+                    penalty.at<float>(y, x) += float(sp.cost * (1.0 - double(off) / same_place));
+                }
+        }
+    };
     OffsetSearch search{source_lab,
                         [&](cv::Point corner) {
                             return (forbidden.empty() || !forbidden.at<uint8_t>(corner)) &&
@@ -444,8 +450,15 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                         std::max(4, overlap / 2),
                         canvas.wide_search
                             ? std::max(kSearchWindow, 2 * std::max(rect.width, rect.height))
-                            : kSearchWindow};
-    if (!penalty.empty()) search.penalty = &penalty;
+                            : kSearchWindow,
+                        {}};
+    if (canvas.usage || !same_places.empty())
+        search.add_penalty = [&](const cv::Rect& area, cv::Mat& costs) {
+            cv::Mat penalty = cv::Mat::zeros(costs.size(), CV_32F);
+            if (canvas.usage) add_usage_cost(area, penalty);
+            add_same_place_cost(area, penalty);
+            costs += penalty;
+        };
     // How much of what is conspicuous in the source a window at `corner` would copy.
     const auto conspicuous_in = [&](cv::Point corner) {
         return canvas.conspicuous ? cv::sum((*canvas.conspicuous)(cv::Rect(corner, rect.size())))[0]

@@ -24,14 +24,14 @@ std::vector<cv::Point> ranked_offsets(const OffsetSearch& search, const cv::Mat&
     const cv::Mat src = search.source_lab(area);
     cv::Mat costs;  // (W - w + 1) x (H - h + 1), CV_32F
     cv::matchTemplate(src, old_lab, costs, cv::TM_SQDIFF, mask);
+    if (search.add_penalty) search.add_penalty(area, costs);
     std::vector<std::pair<float, cv::Point>> ranked;
     ranked.reserve(costs.total());
     for (int y = 0; y < costs.rows; ++y)
         for (int x = 0; x < costs.cols; ++x) {
             const cv::Point at = cv::Point(x, y) + area.tl();
             if (search.allowed && !search.allowed(at)) continue;
-            const float extra = search.penalty ? search.penalty->at<float>(at) : 0.f;
-            ranked.push_back({costs.at<float>(y, x) + extra, at});
+            ranked.push_back({costs.at<float>(y, x), at});
         }
     if (ranked.empty()) return {};
     // Only the best few matter: a partial sort of the best slice, widened while the distinct

@@ -26,9 +26,10 @@ struct OffsetSearch {
     // block_quilting.cpp does on large exemplars: a set quilts over a thousand blocks, and the
     // search over a 512 px source took a 512 px map build past its minute.
     int window = 0;
-    // Added to the match cost of each source position (CV_32F, one per window position over the
-    // whole source), or none.
-    const cv::Mat* penalty = nullptr;
+    // Adds to the match costs of the window positions searched (CV_32F, one per position; the
+    // first is the window at `area`'s top-left), or none. Given the area, a caller computes
+    // its costs only there: over a slab scan's whole source they took most of a map build.
+    std::function<void(const cv::Rect& area, cv::Mat& costs)> add_penalty;
 };
 
 // Up to `count` allowed source positions of `old_lab`'s top-left pixel (CV_32FC3 window of what
