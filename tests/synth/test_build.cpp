@@ -81,7 +81,7 @@ TEST_CASE("a built map has patches in both sets, inside their diamonds and the s
     }
 }
 
-TEST_CASE("map builds do not depend on the number of threads", "[build]") {
+TEST_CASE("map builds do not depend on the number of threads", "[build][heavy]") {
     BuildParams p;
     p.corner_colours = 2;  // a set: its images and their patches are built on threads too
     p.cell_size = 48;

@@ -506,7 +506,7 @@ TEST_CASE("a set of two variants by parity from before twins were broken renders
 }
 
 TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell set",
-          "[cell_set][quality]") {
+          "[cell_set][quality][heavy]") {
     // The one-image map of the demo design as tilejet made it before cell sets (32 px cells),
     // against a set of the same design and cell size built now.
     const TextureMap old_map = load_texture_map(std::filesystem::path(TILEJET_SOURCE_DIR) /

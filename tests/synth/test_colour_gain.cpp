@@ -98,7 +98,7 @@ TEST_CASE("colour gain: stochastic exemplars and negative gains are errors", "[c
 }
 
 TEST_CASE("colour gain: map build takes its source from the rebuilt exemplar",
-          "[colour_gain][build]") {
+          "[colour_gain][build][heavy]") {
     BuildParams p;
     p.corner_colours = 1;
     p.cell_size = 64;  // the lattice rounds it to whole bricks; the exemplar is the source
