@@ -116,9 +116,16 @@ struct Canvas {
 
 // Adds one use to every source pixel the blocks copied (their whole windows: what the cut kept
 // of each is not worth tracking).
-void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
+// Adds one use for each source pixel `blocks` copied to `usage`, which counts the source
+// pixels of `area` (all of the source when `area` is its whole).
+void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks, const cv::Rect& area) {
     for (const Placement& p : blocks)
-        usage(cv::Rect(p.source, p.at.size())) += 1;
+        if (const cv::Rect r = cv::Rect(p.source, p.at.size()) & area; !r.empty())
+            usage(r - area.tl()) += 1;
+}
+
+void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
+    count_uses(usage, blocks, cv::Rect({0, 0}, usage.size()));
 }
 
 // Starts of `count` blocks that cover [begin, end) with at least `overlap` between neighbours.
@@ -371,9 +378,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     // the source's veins and grains go missing.
     const auto add_usage_cost = [&](const cv::Rect& area, cv::Mat& penalty) {
         cv::Mat used = (*canvas.usage)(area).clone();
-        for (const Placement& p : canvas.placed)
-            if (const cv::Rect r = cv::Rect(p.source, p.at.size()) & area; !r.empty())
-                used(r - area.tl()) += 1;
+        count_uses(used, canvas.placed, area);
         // Uses count per pixel of the overlap (the match's sum runs over it); a conspicuous
         // pixel counts whole (it shows wherever the window's copy does).
         const double per_use = canvas.usage_weight * cv::sum(mask)[0] / double(rect.area());
@@ -454,6 +459,8 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                         {}};
     if (canvas.usage || !same_places.empty())
         search.add_penalty = [&](const cv::Rect& area, cv::Mat& costs) {
+            // Summed apart, then added to the match costs once: the float sums (and so the
+            // maps' bytes) stay those of the source-sized penalty before.
             cv::Mat penalty = cv::Mat::zeros(costs.size(), CV_32F);
             if (canvas.usage) add_usage_cost(area, penalty);
             add_same_place_cost(area, penalty);

@@ -25,7 +25,8 @@ namespace {
 
 // A map built by this very test program: CTest runs every test case in a process of its own,
 // and some thirty of them start from small_map(), which takes 2 s to build (20 s under the
-// sanitizers). The first process to need it saves it beside the program; the others load it.
+// sanitizers). The first process to need it saves it in the build tree
+// (TILEJET_FIXTURE_CACHE_DIR); the others load it.
 // The file is only trusted from a program with the same path, size and modification time (a
 // rebuild of any synth code relinks the program), and is written under a temporary name and
 // renamed, so processes running side by side never read half a file. Saving and loading are
@@ -39,6 +40,7 @@ synth::TextureMap built_once(const std::string& name,
     const auto size = fs::file_size(self, ec);
     if (ec) return build();
     const auto stamp = fs::last_write_time(self, ec).time_since_epoch().count();
+    if (ec) return build();
     const fs::path dir = TILEJET_FIXTURE_CACHE_DIR;
     fs::create_directories(dir, ec);
     if (ec) return build();

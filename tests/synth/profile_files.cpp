@@ -24,6 +24,16 @@ void put_be32(std::string& s, uint32_t v) {
 
 }  // namespace
 
+std::string png_chunk(const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    std::string chunk;
+    put_be32(chunk, uint32_t(data.size()));
+    chunk += body;
+    put_be32(chunk,
+             uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
+    return chunk;
+}
+
 std::string png_with_profile(const cv::Mat& rgb, const std::string& icc, bool break_zlib) {
     cv::Mat bgr;
     cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
@@ -35,14 +45,9 @@ std::string png_with_profile(const cv::Mat& rgb, const std::string& icc, bool br
               uLong(icc.size()), 9);
     z.resize(len);
     if (break_zlib) z[z.size() / 2] = char(z[z.size() / 2] ^ 0x55), z.resize(z.size() - 4);
-    const std::string body = std::string("iCCP") + "Adobe RGB" + '\0' + '\0' + z;
-    std::string chunk;
-    put_be32(chunk, uint32_t(body.size() - 4));
-    chunk += body;
-    put_be32(chunk,
-             uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()))));
     std::string out(png.begin(), png.end());
-    out.insert(33, chunk);  // 8-byte signature + IHDR (4 + 4 + 13 + 4)
+    out.insert(33, png_chunk("iCCP", std::string("Adobe RGB") + '\0' + '\0' +
+                                         z));  // 8-byte signature + IHDR (4 + 4 + 13 + 4)
     return out;
 }
 

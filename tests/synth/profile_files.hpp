@@ -14,6 +14,9 @@ inline constexpr const char* kAdobeRgbProfile =
 // The whole content of a file.
 std::string file_text(const char* path);
 
+// One PNG chunk: length, `type` (four letters), `data`, and the CRC of type and data.
+std::string png_chunk(const std::string& type, const std::string& data);
+
 // A PNG of `rgb` (R,G,B) with `icc` in an iCCP chunk right after IHDR; `break_zlib` damages the
 // chunk's compressed profile (keeping the chunk's CRC right, so only the profile is broken).
 std::string png_with_profile(const cv::Mat& rgb, const std::string& icc, bool break_zlib = false);

@@ -105,11 +105,6 @@ std::string striped_png(uint32_t side) {
     const auto be32 = [](uint32_t v) {
         return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
     };
-    const auto chunk = [&](const char* type, const std::string& data) {
-        const std::string body = type + data;
-        const auto crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size()));
-        return be32(uint32_t(data.size())) + body + be32(uint32_t(crc));
-    };
     // Bit depth 1, greyscale, deflate, adaptive filtering, no interlace.
     const std::string header = be32(side) + be32(side) + std::string("\x01\0\0\0\0", 5);
     std::string row(1 + (side + 7) / 8, '\x55');
@@ -129,7 +124,9 @@ std::string striped_png(uint32_t side) {
         } while (z.avail_out == 0);
     }
     deflateEnd(&z);
-    return "\x89PNG\r\n\x1a\n" + chunk("IHDR", header) + chunk("IDAT", data) + chunk("IEND", "");
+    using tilejet::test::png_chunk;
+    return "\x89PNG\r\n\x1a\n" + png_chunk("IHDR", header) + png_chunk("IDAT", data) +
+           png_chunk("IEND", "");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "fixtures.hpp"
+#include "profile_files.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/lattice.hpp"
@@ -42,12 +43,8 @@ std::string png_with_phys(const cv::Mat& rgb, const std::string& chunk_data) {
     std::vector<uint8_t> png;
     cv::imencode(".png", rgb, png);
     std::string bytes(png.begin(), png.end());
-    const std::string body = "pHYs" + chunk_data;
-    const uint32_t crc =
-        uint32_t(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
-    const std::string chunk = be32(uint32_t(chunk_data.size())) + body + be32(crc);
     // 8 signature bytes, then IHDR: 4 length, 4 type, 13 data, 4 CRC.
-    bytes.insert(8 + 25, chunk);
+    bytes.insert(8 + 25, tilejet::test::png_chunk("pHYs", chunk_data));
     return bytes;
 }
 
