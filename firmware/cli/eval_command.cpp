@@ -18,6 +18,7 @@
 #include "commands.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/colour/exemplar_profile.hpp"
+#include "tilejet/quality/cell_place_energy.hpp"
 #include "tilejet/quality/cell_place_repeat.hpp"
 #include "tilejet/quality/colour_match.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
@@ -121,6 +122,10 @@ void print_summary(const quality::ReportPage& page, const std::string& against,
     std::printf("  same place of the cell    %s %% along the borders, %s %% inside\n",
                 quality::gate_figure(g.cell_border_repeat * 100).c_str(),
                 quality::gate_figure(g.cell_inside_repeat * 100).c_str());
+    std::printf("  texture coherence         %s along the cell borders, %s inside (quilt: %s)\n",
+                quality::gate_figure(g.coherence_border).c_str(),
+                quality::gate_figure(g.coherence_inside).c_str(),
+                quality::gate_figure(g.quilt_coherence).c_str());
     if (!page.side_by_side.empty())
         std::printf("walls side by side: %s\n", (dir / "walls-side-by-side.png").c_str());
     std::printf("%-8s %11s %14s %12s %18s %10s %11s %10s\n", "method", "periodicity",
@@ -324,6 +329,13 @@ void run_eval(const EvalOptions& o) {
                                                {"band_px", fold.band},
                                                {"cells", fold.cells}};
     page.gates.cell_border_repeat = fold.border, page.gates.cell_inside_repeat = fold.inside;
+    progress.say("tilejet: texture coherence by place in the cell");
+    const quality::CellPlaceEnergy place =
+        quality::cell_place_energy(map, spec.seed, *shared.energy, kEnergySamples / 2, o.threads);
+    section("tilejet")["cell_place_energy"] = {
+        {"border", place.border}, {"inside", place.inside}, {"band_px", place.band}};
+    page.gates.coherence_border = place.border, page.gates.coherence_inside = place.inside;
+    page.gates.quilt_coherence = section("quilt").value("texture_coherence", 0.0);
     progress.say("walls side by side");
     page.side_by_side_scale = quality::write_walls_side_by_side(corners, dir);
     for (const quality::NamedPicture& c : corners)

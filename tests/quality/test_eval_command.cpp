@@ -50,6 +50,13 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(gates["cell_inside_repeat"] == fold["inside"]);
     CHECK(fold["inside"].get<double>() > 0);
     CHECK(fold["border"].get<double>() <= 1);
+    // Where the coherence goes: in the gates as in tilejet's figures, next to quilt's.
+    const auto& place = m["tilejet"]["cell_place_energy"];
+    CHECK(gates["coherence_border"] == place["border"]);
+    CHECK(gates["coherence_inside"] == place["inside"]);
+    CHECK(gates["quilt_coherence"] == m["quilt"]["texture_coherence"]);
+    CHECK(place["border"].get<double>() > 0);
+    CHECK(place["inside"].get<double>() >= 0);
     for (const char* method : {"tilejet", "canvas", "cell", "quilt"}) {
         INFO(method);
         REQUIRE(m.contains(method));

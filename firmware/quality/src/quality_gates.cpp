@@ -30,6 +30,9 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["patch_coverage"] = g.patch_coverage;
     j["cell_border_repeat"] = g.cell_border_repeat;
     j["cell_inside_repeat"] = g.cell_inside_repeat;
+    j["coherence_border"] = g.coherence_border;
+    j["coherence_inside"] = g.coherence_inside;
+    j["quilt_coherence"] = g.quilt_coherence;
     return j;
 }
 

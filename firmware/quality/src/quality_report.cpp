@@ -166,7 +166,14 @@ std::string gates_html(const ReportPage& page) {
       << gate_figure(g.cell_inside_repeat * 100)
       << " %</div><div class='what'>of tilejet's cells, how many show the same pixel at a place "
          "of the cell: along the cell borders / inside them (the grid a wall folded by the "
-         "cell size shows)</div></div></div><p>Both gates pass at "
+         "cell size shows)</div></div>"
+      << "<div class='gate'><div class='label'>texture coherence by place</div><div class='value'>"
+      << gate_figure(g.coherence_border) << " / " << gate_figure(g.coherence_inside)
+      << "</div><div class='what'>tilejet's 8x8 neighbourhoods against the exemplar's (lower is "
+         "closer), along the cell borders / inside the cells; the quilt wall's: "
+      << gate_figure(g.quilt_coherence)
+      << ". The borders are where a cell's inside is cut into the strips it shares with its "
+         "neighbours</div></div></div><p>Both gates pass at "
       << gate_figure(g.limit) << " or below (1 = as good as quilting every tile offline).</p>";
     return h.str();
 }

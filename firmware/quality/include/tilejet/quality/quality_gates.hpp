@@ -29,6 +29,10 @@ struct QualityGates {
     // in the band along the cell borders and inside it (cell_place_repeat.hpp): the grid a wall
     // folded by the cell size shows. Set by eval after quality_gates().
     double cell_border_repeat = 0, cell_inside_repeat = 0;
+    // Nor these: tilejet's texture coherence along the cell borders and inside the cells
+    // (cell_place_energy.hpp), and the quilt wall's over the whole wall, to compare with. Set
+    // by eval; 0 when not measured.
+    double coherence_border = 0, coherence_inside = 0, quilt_coherence = 0;
 
     // A figure that could not be measured does not pass: the report cannot vouch for it.
     bool periodicity_pass() const { return periodicity && *periodicity <= limit; }
