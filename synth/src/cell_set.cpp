@@ -114,10 +114,9 @@ struct Canvas {
     }
 };
 
-// Adds one use to every source pixel the blocks copied (their whole windows: what the cut kept
-// of each is not worth tracking).
-// Adds one use for each source pixel `blocks` copied to `usage`, which counts the source
-// pixels of `area` (all of the source when `area` is its whole).
+// Adds one use for each source pixel `blocks` copied (their whole windows: what the cut kept
+// of each is not worth tracking) to `usage`, which counts the source pixels of `area` (all of
+// the source when `area` is its whole).
 void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks, const cv::Rect& area) {
     for (const Placement& p : blocks)
         if (const cv::Rect r = cv::Rect(p.source, p.at.size()) & area; !r.empty())
