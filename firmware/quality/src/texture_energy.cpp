@@ -30,6 +30,20 @@ void patch_row(const cv::Mat& lab, int x, int y, float* out) {
     }
 }
 
+// Squared distance between the 8x8 patch of `lab` at (x, y) and `patch` (192 floats).
+double patch_distance(const cv::Mat& lab, int x, int y, const float* patch) {
+    double sum = 0;
+    for (int r = 0; r < kEnergyPatch; ++r) {
+        const float* p = lab.ptr<float>(y + r) + 3 * x;
+        const float* q = patch + r * 3 * kEnergyPatch;
+        for (int i = 0; i < 3 * kEnergyPatch; ++i) {
+            const double d = double(p[i]) - double(q[i]);
+            sum += d * d;
+        }
+    }
+    return sum;
+}
+
 }  // namespace
 
 struct TextureEnergy::Index {
@@ -39,10 +53,14 @@ struct TextureEnergy::Index {
     };
     std::vector<cv::Mat> labs;  // the indexed images, CIELab CV_32FC3
     std::vector<At> at;         // where each indexed patch lies
+    int step = 1;               // the grid of indexed positions
     cv::PCA pca;
     cv::Mat reduced;  // one row of 24 per patch: full patches would take 768 B each
-    // One kd-forest per thread: FLANN does not promise that searches share an index safely.
-    std::vector<std::unique_ptr<cv::flann::Index>> forests;
+    // One kd-forest, searched from every thread: OpenCV's FLANN keeps each search's heap in a
+    // pool keyed by thread (flann/heap.h, getPooledInstance) and leaves the trees untouched.
+    // A forest per thread, as up to session 26, cost a second build of the same trees.
+    std::unique_ptr<cv::flann::Index> forest;
+    int threads = 1;
 
     void patch(size_t i, float* out) const { patch_row(labs[at[i].image], at[i].x, at[i].y, out); }
 };
@@ -64,6 +82,7 @@ TextureEnergy::TextureEnergy(const std::vector<cv::Mat>& images, int threads, si
     while (positions / size_t(step * step) > std::max<size_t>(1, max_patches))
         ++step;
     Index& index = *index_;
+    index.step = step;
     for (uint32_t i = 0; i < images.size(); ++i) {
         index.labs.push_back(synth::detail::to_lab(images[i]));
         for (int y = 0; y <= images[i].rows - kEnergyPatch; y += step)
@@ -90,11 +109,15 @@ TextureEnergy::TextureEnergy(const std::vector<cv::Mat>& images, int threads, si
                 index.patch(i, full.ptr<float>(int(i - begin)));
             index.pca.project(full).copyTo(index.reduced.rowRange(int(begin), int(end)));
         });
-    for (int t = 0; t < threads; ++t) {
-        std::srand(1);  // FLANN draws its kd-tree splits from rand(): same trees every run
-        index.forests.push_back(
-            std::make_unique<cv::flann::Index>(index.reduced, cv::flann::KDTreeIndexParams(4)));
-    }
+    // FLANN shuffles with OpenCV's per-thread generator (cv::randShuffle) and splits with
+    // rand(): both seeded here so the trees, and the figures, are the same every run.
+    const cv::RNG callers = cv::theRNG();
+    cv::theRNG() = cv::RNG(1);
+    std::srand(1);
+    index.forest =
+        std::make_unique<cv::flann::Index>(index.reduced, cv::flann::KDTreeIndexParams(4));
+    cv::theRNG() = callers;
+    index.threads = threads;
 }
 
 TextureEnergy::~TextureEnergy() = default;
@@ -120,35 +143,67 @@ double TextureEnergy::measure(const std::vector<cv::Mat>& tiles, size_t samples,
     std::sort(where.begin(), where.end(),
               [](const Sample& a, const Sample& b) { return a.tile < b.tile; });
 
-    const size_t chunks = index_->forests.size();
+    // On a grid of every `step` positions an exemplar patch copied off the grid would meet
+    // only misaligned neighbours. So each sample is searched for at the step x step positions
+    // from it, one of which lies on the grid wherever the copy is, and each candidate found
+    // is moved back by the same shift and measured against the sample itself.
+    const Index& index = *index_;
+    const int step = index.step;
+    const int shifts = step * step;
+    constexpr size_t kBatch = 2048;  // samples searched at once: bounds the query matrix
+    const size_t chunks = size_t(index.threads);
     std::vector<double> sums(chunks, 0);
     synth::detail::parallel_for(chunks, int(chunks), [&](size_t c) {
         const size_t begin = samples * c / chunks, end = samples * (c + 1) / chunks;
-        if (begin == end) return;
-        cv::Mat queries(int(end - begin), kDims, CV_32F);
         cv::Mat lab;
         uint32_t lab_tile = UINT32_MAX;
-        for (size_t i = begin; i < end; ++i) {
-            if (where[i].tile != lab_tile)
-                lab = synth::detail::to_lab(tiles[where[i].tile]), lab_tile = where[i].tile;
-            patch_row(lab, where[i].x, where[i].y, queries.ptr<float>(int(i - begin)));
-        }
-        cv::Mat indices, dists;
-        index_->forests[c]->knnSearch(index_->pca.project(queries), indices, dists, kCandidates,
-                                      cv::flann::SearchParams(kChecks));
-        double sum = 0;
-        cv::Mat candidate(1, kDims, CV_32F);
-        for (int q = 0; q < queries.rows; ++q) {
-            double best = 1e300;
-            for (int k = 0; k < kCandidates; ++k) {
-                const int e = indices.at<int>(q, k);
-                if (e < 0) continue;
-                index_->patch(size_t(e), candidate.ptr<float>());
-                best = std::min(best, cv::norm(queries.row(q), candidate, cv::NORM_L2SQR));
+        std::vector<cv::Point> shift_of;
+        for (size_t batch = begin; batch < end; batch += kBatch) {
+            const size_t n = std::min(kBatch, end - batch);
+            cv::Mat queries(int(n) * shifts, kDims, CV_32F);
+            shift_of.assign(n * size_t(shifts), cv::Point(0, 0));
+            for (size_t i = 0; i < n; ++i) {
+                const Sample& s = where[batch + i];
+                if (s.tile != lab_tile)
+                    lab = synth::detail::to_lab(tiles[s.tile]), lab_tile = s.tile;
+                for (int k = 0; k < shifts; ++k) {
+                    // Shifted forwards, or backwards at the tile's far edge; unshifted if the
+                    // tile has no room either way.
+                    cv::Point d(k % step, k / step);
+                    if (s.x + d.x > lab.cols - kEnergyPatch) d.x = s.x - d.x >= 0 ? -d.x : 0;
+                    if (s.y + d.y > lab.rows - kEnergyPatch) d.y = s.y - d.y >= 0 ? -d.y : 0;
+                    shift_of[i * size_t(shifts) + size_t(k)] = d;
+                    patch_row(lab, s.x + d.x, s.y + d.y, queries.ptr<float>(int(i) * shifts + k));
+                }
             }
-            sum += std::sqrt(best / (kEnergyPatch * kEnergyPatch));
+            cv::Mat indices, dists;
+            index.forest->knnSearch(index.pca.project(queries), indices, dists, kCandidates,
+                                    cv::flann::SearchParams(kChecks));
+            for (size_t i = 0; i < n; ++i) {
+                const float* sample = queries.ptr<float>(int(i) * shifts);  // shift (0, 0)
+                double best = 1e300;
+                for (int k = 0; k < shifts; ++k) {
+                    const int q = int(i) * shifts + k;
+                    const cv::Point d = shift_of[size_t(q)];
+                    for (int j = 0; j < kCandidates; ++j) {
+                        const int e = indices.at<int>(q, j);
+                        if (e < 0) continue;
+                        const Index::At at = index.at[size_t(e)];
+                        const cv::Mat& indexed = index.labs[at.image];
+                        const int x = at.x - d.x, y = at.y - d.y;
+                        if (x < 0 || y < 0 || x > indexed.cols - kEnergyPatch ||
+                            y > indexed.rows - kEnergyPatch)
+                            continue;
+                        best = std::min(best, patch_distance(indexed, x, y, sample));
+                    }
+                }
+                if (best < 1e300)
+                    sums[c] += std::sqrt(best / (kEnergyPatch * kEnergyPatch));
+                else
+                    sums[c] += std::sqrt(dists.at<float>(int(i) * shifts, 0) /
+                                         (kEnergyPatch * kEnergyPatch));
+            }
         }
-        sums[c] = sum;
     });
     double total = 0;
     for (double s : sums)
