@@ -205,9 +205,9 @@ void add_map_commands(CLI::App& app) {
                   "near-regular exemplars: how much the lattice tiles' colours differ, 0 all "
                   "alike, 1 as in the exemplar (default), 2 twice as much");
     b->add_option("--enlarge", build->enlarge,
-                  "how an exemplar too small to copy from directly (under a cell and its "
-                  "frame; two cells for one cell image or on a lattice) is enlarged into the "
-                  "source: quilt (default), rsgf or enm");
+                  "how an exemplar too small to copy from directly (two cells for one cell "
+                  "image or on a lattice; for a set only with cells under 40 px) is enlarged "
+                  "into the source: quilt (default), rsgf or enm");
     b->callback([build] {
         build->params.enlarge = synth::parse_synth_method(build->enlarge, "--enlarge");
         run_build(*build);

@@ -299,7 +299,9 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
 
     // The source is what cell images, strips and patches copy from: the exemplar itself
     // wherever it is large enough. A one-image map's patches need room around them in the
-    // source: two cells. A set needs a cell and its frame; enlarged to two cells anyway, the
+    // source: two cells. A set needs an inside block and its frame (cell_set.cpp: the demo
+    // design at 100 dpi, 256 px with cells of 256, was quilted first until session 27, and
+    // the set copied the quilt's shards); enlarged to two cells anyway, the
     // corpus's 384 px exemplars became quilts of their own calmest parts (marble's veins gave
     // way to rows of one small motif, limestone lost its cracks), and the set copied that
     // (docs/design.md section 2.3). On a lattice the quilt moves whole lattice periods and

@@ -65,8 +65,8 @@ class CellSet {
     // `source_rgb` CV_8UC3 R,G,B, at least a cell and a frame larger than the cell each way;
     // `source_lab` its to_lab().
     CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params);
-    // The smallest source a set of `cell` can be made from: a cell, its strips' frame on both
-    // sides and a pixel of slack each way.
+    // The smallest source a set of `cell` can be made from: an inside block (three quarters of
+    // the cell), its strips' frame on both sides and a pixel of slack each way.
     static cv::Size smallest_source(cv::Size cell);
 
     size_t size() const { return images_.size(); }

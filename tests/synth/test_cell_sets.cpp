@@ -194,6 +194,22 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     require_seamless(map);
 }
 
+TEST_CASE("a set from a source shorter than its strips is seamless for every pair the hash picks",
+          "[cell_set]") {
+    // 64 px cells from a 70 px exemplar: each strip (76 px) is quilted from two blocks, and
+    // the cells copy the exemplar itself, not a quilt of it.
+    BuildParams p;
+    p.cell_size = 64;
+    p.patches = 4;
+    p.candidates = 8;
+    cv::Mat exemplar;
+    demo_exemplar()(cv::Rect(60, 50, 70, 70)).copyTo(exemplar);
+    const TextureMap map = build_texture_map(exemplar, p);
+    REQUIRE(map.source.size() == exemplar.size());
+    REQUIRE(map.cell_images.size() == 32);
+    require_seamless(map);
+}
+
 TEST_CASE(
     "cuts through an enlarged exemplar are blended as soft as the stone, cells still seamless",
     "[cell_set]") {

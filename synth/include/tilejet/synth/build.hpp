@@ -56,8 +56,9 @@ struct BuildParams {
     // Colour-regularity gain of a near-regular exemplar's tiles (colour_gain.hpp), applied to
     // the exemplar before anything else: 0 every tile the mean tile, 1 unchanged (and no cost).
     double colour_gain = 1;
-    // How an exemplar too small to copy from directly (under a cell and its frame for a set,
-    // two cells for one cell image or on a lattice) is enlarged into the source: quilting
+    // How an exemplar too small to copy from directly (for a set, under an inside block and its
+    // frame: only with cells under 40 px; two cells for one cell image or on a lattice) is
+    // enlarged into the source: quilting
     // (toroidal, lattice-aware; the default), rsgf or enm (synthesize.hpp).
     SynthMethod enlarge = SynthMethod::Quilt;
     // Recorded in the map (BuildRecord): the print resolution the exemplar has already been
