@@ -196,6 +196,14 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         overlap_ = std::max(2, side / 4);
     } else {
         block_ = cv::Size(std::max(8, cw_ * 3 / 4), std::max(8, ch_ * 3 / 4));
+        // From a source under one and a half cells (an exemplar of about the cell's side) a
+        // block of three quarters of the cell has under a quarter of the cell to move in: every
+        // cell showed the source's one white vein at nearly the same place (the demo design at
+        // 100 dpi, map seed 4: periodicity 1.70). Blocks of half the cell move twice as far:
+        // 0.77, texture energy 1.17 and 1.16 times quilting's (map seeds 1-4: periodicity
+        // 0.65-1.00, texture energy 1.00-1.16).
+        if (2 * std::min(source_rgb.cols, source_rgb.rows) < 3 * side)
+            block_ = cv::Size(std::max(8, cw_ / 2), std::max(8, ch_ / 2));
         overlap_ = std::max(2, std::min(block_.width, block_.height) / 4);
     }
     w_ = frame_width(params.cell);
