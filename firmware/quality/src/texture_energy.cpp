@@ -199,7 +199,7 @@ double TextureEnergy::measure(const std::vector<cv::Mat>& tiles, size_t samples,
                 }
                 if (best < 1e300)
                     sums[c] += std::sqrt(best / (kEnergyPatch * kEnergyPatch));
-                else
+                else  // no candidate at all (never seen): the search's own, reduced distance
                     sums[c] += std::sqrt(dists.at<float>(int(i) * shifts, 0) /
                                          (kEnergyPatch * kEnergyPatch));
             }
