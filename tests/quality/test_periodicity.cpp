@@ -42,8 +42,8 @@ TEST_CASE("a period of 40 px is found at lag 40", "[quality]") {
     CHECK(std::abs(p.lag.y) % 40 == 0);
 }
 
-// [heavy]: a set of 256 px cells, 20 s; quality_tests does not leave [heavy] out of the
-// sanitizer pass as synth_tests does (tests/CMakeLists.txt), and there it takes 133 s.
+// [heavy]: a set of 256 px cells, 20 s (left out of the sanitizer pass, tests/CMakeLists.txt,
+// where it took 133 s).
 TEST_CASE("a set from an exemplar of the cell's side puts what it copies anywhere in the cell",
           "[quality][cell_set][heavy]") {
     // Blocks of three quarters of the cell from a source not much larger could move a quarter
