@@ -62,7 +62,7 @@ struct CellSetParams {
 
 class CellSet {
   public:
-    // `source_rgb` CV_8UC3 R,G,B, at least a cell and a frame larger than the cell each way;
+    // `source_rgb` CV_8UC3 R,G,B, at least smallest_source(params.cell);
     // `source_lab` its to_lab().
     CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params);
     // The smallest source a set of `cell` can be made from: an inside block (three quarters of

@@ -19,21 +19,21 @@ namespace tilejet::quality {
 
 inline constexpr int kEnergyPatch = 8;
 // Every position of images up to this many patches in all (the corpus: a stretch of wall of
-// 1 Mpx, exemplars up to 1000 px); beyond, every second or third position, and the search
-// refines each candidate over the positions between grid points. Session 26 found the coarser
-// grid alone (every third position, unrefined) put a floor of about 4 under completeness: an
-// exemplar patch copied off the grid met only misaligned neighbours. Indexing 4 million
-// patches instead cost the 200-tile eval 4 minutes more; the refinement costs a second.
+// 1 Mpx, exemplars up to 1000 px); beyond, every n-th position, and each sample is searched at
+// the n x n shifts from it, one of which lies on the grid wherever a copy is. Session 26 found
+// the coarser grid alone (every third position, unshifted) put a floor of about 4 under
+// completeness: an exemplar patch copied off the grid met only misaligned neighbours.
+// Indexing 4 million patches instead cost the 200-tile eval 4 minutes more.
 inline constexpr size_t kEnergyMaxPatches = 1100000;
 
 class TextureEnergy {
   public:
     // Indexes the 8x8 CIELab patches of `exemplar` (CV_8UC3 R,G,B) at every position (on a
-    // coarser grid, refined when searched, beyond kEnergyMaxPatches), reduced by PCA to 24
+    // coarser grid searched at every shift, beyond kEnergyMaxPatches), reduced by PCA to 24
     // dimensions for an OpenCV FLANN kd-forest; `threads` searches run side by side.
     explicit TextureEnergy(const cv::Mat& exemplar, int threads = 0);
     // The patches of several images (e.g. a wall's tiles), `max_patches` at most in all (on a
-    // coarser grid, refined when searched, beyond): each costs about 110 bytes, and the index a
+    // coarser grid searched at every shift, beyond): each costs about 110 bytes, and the index a
     // second or so per 100 000 to build.
     explicit TextureEnergy(const std::vector<cv::Mat>& images, int threads = 0,
                            size_t max_patches = kEnergyMaxPatches);
