@@ -39,6 +39,9 @@ constexpr double kUsageCost = 0.5;
 // and they went in at random: seams, and the design's texture energy 1.32-1.47 times quilting's
 // (limestone, gravel, setts) against 1.13-1.29 with the cost.
 constexpr double kSamePlaceCost = 1.0;
+// Two images' blocks copy the same window to the same place when their sources lie within this
+// many px (CellSet's constructor).
+constexpr int kRepeatReach = 4;
 // A source's few conspicuous features (the demo design's one white vein) catch the eye wherever
 // they recur. A region is conspicuous where its pixels are, on average over a sixteenth of the
 // cell, further from the source's mean colour than this many standard deviations (squared):
@@ -121,6 +124,12 @@ void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks, const cv::
     for (const Placement& p : blocks)
         if (const cv::Rect r = cv::Rect(p.source, p.at.size()) & area; !r.empty())
             usage(r - area.tl()) += 1;
+}
+
+// Whether block `a` copies (nearly) the window `b` copied to the same place of its cell.
+bool repeats(const Placement& a, const Placement& b) {
+    const cv::Point d = a.source - b.source;
+    return a.at == b.at && std::max(std::abs(d.x), std::abs(d.y)) < kRepeatReach;
 }
 
 void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
@@ -295,6 +304,24 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
                 images_[first + i] = make_image(first + i, placed, usage,
                                                 fresh_accounts ? all_uses : usage, batch[i]);
             });
+            // Images of a batch do not see each other's blocks, and where one window fitted both
+            // frames best, both copied it to the same place: two of limestone's 32 images (384
+            // px, map seed 1) showed one inside. One that repeats an earlier image of its batch
+            // so is made again seeing its blocks, as those of the batches before.
+            for (size_t i = 1; i < batch.size(); ++i) {
+                std::vector<Placement> seen = placed;
+                for (size_t j = 0; j < i; ++j)
+                    seen.insert(seen.end(), batch[j].begin(), batch[j].end());
+                if (std::ranges::none_of(batch[i], [&](const Placement& p) {
+                        return std::ranges::any_of(
+                            seen.begin() + std::ptrdiff_t(placed.size()), seen.end(),
+                            [&](const Placement& q) { return repeats(p, q); });
+                    }))
+                    continue;
+                batch[i].clear();
+                images_[first + i] =
+                    make_image(first + i, seen, usage, fresh_accounts ? all_uses : usage, batch[i]);
+            }
             for (const auto& b : batch) {
                 unmatched_blocks_ += size_t(std::ranges::count(b, false, &Placement::matched));
                 placed.insert(placed.end(), b.begin(), b.end());
