@@ -311,15 +311,17 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
             // lattice, where each block has few windows: re-made, the brick-course test's
             // courses stepped at cell borders (continuity 0.77, under its 0.8).
             for (size_t i = 1; i < batch.size() && !params.lattice; ++i) {
+                const auto repeats_a_mate = [&](const Placement& p) {
+                    for (size_t j = 0; j < i; ++j)
+                        if (std::ranges::any_of(batch[j],
+                                                [&](const Placement& q) { return repeats(p, q); }))
+                            return true;
+                    return false;
+                };
+                if (std::ranges::none_of(batch[i], repeats_a_mate)) continue;
                 std::vector<Placement> seen = placed;
                 for (size_t j = 0; j < i; ++j)
                     seen.insert(seen.end(), batch[j].begin(), batch[j].end());
-                if (std::ranges::none_of(batch[i], [&](const Placement& p) {
-                        return std::ranges::any_of(
-                            seen.begin() + std::ptrdiff_t(placed.size()), seen.end(),
-                            [&](const Placement& q) { return repeats(p, q); });
-                    }))
-                    continue;
                 batch[i].clear();
                 images_[first + i] =
                     make_image(first + i, seen, usage, fresh_accounts ? all_uses : usage, batch[i]);

@@ -130,6 +130,14 @@ double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
 // Every pair of images the hash can put side by side or one above the other meets seamlessly:
 // the jump across their edge is like a jump between two columns inside an image; pairs the hash
 // never picks jump more (the measure can fail).
+// How many pixels of `inside` show exactly the same colour in both images.
+int pixels_alike(const cv::Mat& a, const cv::Mat& b, const cv::Rect& inside) {
+    cv::Mat same;
+    cv::compare(a(inside), b(inside), same, cv::CMP_EQ);
+    cv::cvtColor(same, same, cv::COLOR_RGB2GRAY);
+    return cv::countNonZero(same == 255);
+}
+
 void require_seamless(const TextureMap& map) {
     REQUIRE((map.variants == 1 || map.variants == 2));
     const int k = map.corner_colours, variants = map.variants;
@@ -455,13 +463,11 @@ TEST_CASE("the two variants of a small source's set differ, the first as one var
     const int frame = 40 / 10 + 1;
     const cv::Rect inside(frame, frame, 40 - 2 * frame, 40 - 2 * frame);
     for (size_t i = 0; i < 16; ++i) {
-        cv::Mat same;
-        cv::compare(two.cell_images[i].pixels(inside), two.cell_images[i + 16].pixels(inside), same,
-                    cv::CMP_EQ);
-        cv::cvtColor(same, same, cv::COLOR_RGB2GRAY);
-        INFO("combination " << i << ": pixels alike in both variants "
-                            << cv::countNonZero(same == 255) << " of " << inside.area());
-        CHECK(cv::countNonZero(same == 255) < inside.area() / 2);
+        const int alike =
+            pixels_alike(two.cell_images[i].pixels, two.cell_images[i + 16].pixels, inside);
+        INFO("combination " << i << ": pixels alike in both variants " << alike << " of "
+                            << inside.area());
+        CHECK(alike < inside.area() / 2);
     }
 }
 
@@ -738,12 +744,8 @@ TEST_CASE("the two images of a set made side by side do not show one inside", "[
         const int frame = 128 / 10 + 1;
         const cv::Rect inside(frame, frame, 128 - 2 * frame, 128 - 2 * frame);
         int worst = 0;
-        for (size_t i = 0; i + 1 < set.size(); i += 2) {
-            cv::Mat same;
-            cv::compare(set.image(i)(inside), set.image(i + 1)(inside), same, cv::CMP_EQ);
-            cv::cvtColor(same, same, cv::COLOR_RGB2GRAY);
-            worst = std::max(worst, cv::countNonZero(same == 255));
-        }
+        for (size_t i = 0; i + 1 < set.size(); i += 2)
+            worst = std::max(worst, pixels_alike(set.image(i), set.image(i + 1), inside));
         INFO("map seed " << seed << ": most pixels alike at the same place of two images made "
                          << "side by side " << worst << " of " << inside.area());
         CHECK(worst < inside.area() / 8);
