@@ -184,14 +184,16 @@ void add_map_commands(CLI::App& app) {
                   "edge show the same image and few across a vertex (default 2, but 1 for grain "
                   "under 8 px in cells up to 320 px, and for cells over 320 px from a source "
                   "their set copies less than once)");
-    b->add_option("--patches", build->params.patches,
-                  "patches kept per cell image (default 600 for one cell image, 32 in a set)");
+    b->add_option(
+        "--patches", build->params.patches,
+        "patches kept per cell image (default 600 for one cell image; in a set none, 32 when "
+        "--active is given)");
     b->add_option("--candidates", build->params.candidates,
                   "candidate patches searched per cell image (default 40 per patch, 8 in a set)");
     b->add_option(
         "--active", build->params.active_per_cell,
-        "expected active patches per cell, eta * |set| (default 10 for one cell image, 4 in a "
-        "set)");
+        "expected active patches per cell, eta * |set| (default 10 for one cell image; none in "
+        "a set, 4 there when --patches or --candidates is given)");
     b->add_option("--seed", build->params.seed, "build seed (default 1)");
     b->add_option("--threads", build->params.threads, "threads (default: all cores)");
     b->add_option("--lattice", build->params.lattice,

@@ -487,6 +487,49 @@ TEST_CASE("a set renders region by region exactly as Sampler::sample", "[cell_se
     }
 }
 
+TEST_CASE("a set shows no patches unless they are asked for", "[cell_set][sampler]") {
+    BuildParams p;
+    p.corner_colours = 2;
+    p.variants = 2;
+    p.cell_size = kCell;
+    p.seed = 3;
+    const TextureMap bare = build_texture_map(demo_exemplar(), p);
+    REQUIRE(bare.cell_images.size() == 32);
+    for (const CellImage& image : bare.cell_images) {
+        CHECK(image.a.patches.empty());
+        CHECK(image.b.patches.empty());
+    }
+    // Through the file and back it renders as it samples, every pixel its cell image's own.
+    const TextureMap again = decode_texture_map(encode_texture_map(bare), "bare.tjmap");
+    const Region region{-333, 71, 437, 291};
+    const cv::Mat out = render_region(again, 77, region, 2);
+    REQUIRE(tilejet::test::pixels_unlike_sampler(again, 77, region, out) == 0);
+    const auto floor_div = [](int64_t a, int64_t b) {
+        return a >= 0 ? a / b : -((-a + b - 1) / b);
+    };
+    size_t unlike_image = 0;
+    for (int y = 0; y < out.rows; ++y)
+        for (int x = 0; x < out.cols; ++x) {
+            const int64_t px = region.x + x, py = region.y + y;
+            const int64_t i = floor_div(px, kCell), j = floor_div(py, kCell);
+            const cv::Mat& image = again.cell_images[cell_image_index(again, 77, {i, j})].pixels;
+            unlike_image += out.at<cv::Vec3b>(y, x) !=
+                            image.at<cv::Vec3b>(int(py - j * kCell), int(px - i * kCell));
+        }
+    CHECK(unlike_image == 0);
+    // Asked for, they are made from the same images.
+    p.active_per_cell = 4;
+    const TextureMap patched = build_texture_map(demo_exemplar(), p);
+    REQUIRE(patched.cell_images.size() == bare.cell_images.size());
+    size_t patches = 0;
+    for (size_t m = 0; m < patched.cell_images.size(); ++m) {
+        const CellImage& image = patched.cell_images[m];
+        patches += image.a.patches.size() + image.b.patches.size();
+        CHECK(cv::norm(image.pixels, bare.cell_images[m].pixels, cv::NORM_INF) == 0);
+    }
+    CHECK(patches > 0);
+}
+
 TEST_CASE("a map of one cell image from before cell sets loads and renders as it did",
           "[cell_set][map_file]") {
     // Made by the tilejet of commit a473b0c (map build config/demo/green-marble.png --cell 32

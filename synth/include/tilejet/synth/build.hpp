@@ -41,14 +41,16 @@ struct BuildParams {
     // Twice the build time where there are two.
     int variants = 0;
     // P per cell image: the best P candidates are kept and split into A and B.
-    // 0: default (600 for a single cell image, 32 per image of a set).
+    // 0: default (600 for a single cell image; for a set none, 32 per image when
+    // active_per_cell or candidates is given).
     int patches = 0;
     int candidates = 0;  // per cell image; 0: default (40 per patch, 8 in a set)
     uint64_t seed = 1;
     int threads = 0;  // 0: all cores; the result never depends on it
-    // Expected active patches per cell (eta * |set|). 0: default, 10 for one cell image, 4 in a
-    // set: there the cell images vary already, and every shown patch adds seams (on the demo
-    // design 10 raised texture energy by a fifth over 4 and made periodicity no better).
+    // Expected active patches per cell (eta * |set|). 0: default, 10 for one cell image; none in
+    // a set, whose images vary the plane already and where every shown patch adds seams
+    // (build.cpp), 4 there when patches or candidates are given (on the demo design 10 raised
+    // texture energy by a fifth over 4 and made periodicity no better).
     double active_per_cell = 0;
     // Auto: detect the exemplar's lattice; when it has one, cells are a lattice-compatible
     // rectangle and every copy (quilting blocks, patches) moves by lattice translations only.
