@@ -244,8 +244,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
     // A set shows no patches unless they are asked for. Its images vary the plane already, and
     // every shown patch is a closed seam through them: on the corpus at map seeds 1 and 2
     // (session 29) texture energy came out lower without them on all 22 (design, seed) pairs,
-    // the seam-free insides' coherence about half (limestone 0.42 against 0.80), and the gates
-    // failed on 2 pairs instead of 8 (README, "Patches in a set").
+    // the insides' coherence about half (limestone 0.46 against 0.80), and the gates failed on
+    // 4 pairs instead of 9 (README, "Session 29: no patches in a set").
     const bool shows_patches = corner_colours == 1 || params.active_per_cell > 0 ||
                                params.patches > 0 || params.candidates > 0;
     const double active_per_cell = params.active_per_cell > 0 ? params.active_per_cell

@@ -127,9 +127,6 @@ double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
     return (grid - off) / double(on.size());
 }
 
-// Every pair of images the hash can put side by side or one above the other meets seamlessly:
-// the jump across their edge is like a jump between two columns inside an image; pairs the hash
-// never picks jump more (the measure can fail).
 // How many pixels of `inside` show exactly the same colour in both images.
 int pixels_alike(const cv::Mat& a, const cv::Mat& b, const cv::Rect& inside) {
     cv::Mat same;
@@ -138,6 +135,9 @@ int pixels_alike(const cv::Mat& a, const cv::Mat& b, const cv::Rect& inside) {
     return cv::countNonZero(same == 255);
 }
 
+// Every pair of images the hash can put side by side or one above the other meets seamlessly:
+// the jump across their edge is like a jump between two columns inside an image; pairs the hash
+// never picks jump more (the measure can fail).
 void require_seamless(const TextureMap& map) {
     REQUIRE((map.variants == 1 || map.variants == 2));
     const int k = map.corner_colours, variants = map.variants;
