@@ -1,6 +1,4 @@
-#include <algorithm>
 #include <catch2/catch.hpp>
-#include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,31 +11,6 @@
 #include "walls.hpp"
 
 using namespace tilejet;
-
-namespace {
-
-// Pearson correlation of `rgb` (CV_8UC3) with itself moved by `lag`, in CIELab, channels pooled
-// (as autocorrelation_peak measures each lag).
-double correlation_at(const cv::Mat& rgb, cv::Point lag) {
-    cv::Mat lab;
-    rgb.convertTo(lab, CV_32FC3, 1 / 255.0);
-    cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);
-    const int w = lab.cols - std::abs(lag.x), h = lab.rows - std::abs(lag.y);
-    const cv::Mat a = lab(cv::Rect(std::max(0, -lag.x), std::max(0, -lag.y), w, h));
-    const cv::Mat b = lab(cv::Rect(std::max(0, lag.x), std::max(0, lag.y), w, h));
-    const cv::Scalar mean_a = cv::mean(a), mean_b = cv::mean(b);
-    double covariance = 0, variance_a = 0, variance_b = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const double u = a.at<cv::Vec3f>(y, x)[c] - mean_a[c];
-                const double v = b.at<cv::Vec3f>(y, x)[c] - mean_b[c];
-                covariance += u * v, variance_a += u * u, variance_b += v * v;
-            }
-    return covariance / std::sqrt(variance_a * variance_b);
-}
-
-}  // namespace
 
 TEST_CASE("a repeated cell image is far more periodic than the exemplar's own look", "[quality]") {
     const synth::TextureMap& map = test::small_map();  // 64 px cells
@@ -89,6 +62,9 @@ TEST_CASE("a set from an exemplar of the cell's side puts what it copies anywher
     const synth::TextureMap set = synth::build_texture_map(test::demo_exemplar(), p);
     REQUIRE(set.source.size() == test::demo_exemplar().size());
     const cv::Mat plane = synth::render_region(set, 7, {0, 0, 2048, 2048});
+    cv::Mat plane_lab;
+    plane.convertTo(plane_lab, CV_32FC3, 1 / 255.0);
+    cv::cvtColor(plane_lab, plane_lab, cv::COLOR_RGB2Lab);
     const quality::AutocorrelationPeak anywhere = quality::autocorrelation_peak(plane);
     const quality::AutocorrelationPeak own = quality::autocorrelation_peak(
         synth::quilt_texture(test::demo_exemplar(), {2048, 2048}, 5, 64).rgb);
@@ -96,7 +72,7 @@ TEST_CASE("a set from an exemplar of the cell's side puts what it copies anywher
                                     << own.value);
     for (const cv::Point lag :
          {cv::Point(256, 0), cv::Point(0, 256), cv::Point(256, 256), cv::Point(256, -256)}) {
-        const double at_cell = correlation_at(plane, lag);
+        const double at_cell = test::correlation_at(plane_lab, lag);
         INFO("one cell away at " << lag << ": " << at_cell);
         CHECK(at_cell < 2.5 * own.value);
     }

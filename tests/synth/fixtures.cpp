@@ -63,6 +63,24 @@ synth::TextureMap built_once(const std::string& name,
 
 }  // namespace
 
+double correlation_at(const cv::Mat& lab, cv::Point lag) {
+    const cv::Rect a(std::max(0, -lag.x), std::max(0, -lag.y), lab.cols - std::abs(lag.x),
+                     lab.rows - std::abs(lag.y));
+    const cv::Rect b = a + lag;
+    const cv::Mat pa = lab(a), pb = lab(b);
+    const cv::Scalar ma = cv::mean(pa), mb = cv::mean(pb);
+    double cov = 0, va = 0, vb = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const cv::Vec3f p = pa.at<cv::Vec3f>(y, x), q = pb.at<cv::Vec3f>(y, x);
+            for (int c = 0; c < 3; ++c) {
+                const double u = p[c] - ma[c], v = q[c] - mb[c];
+                cov += u * v, va += u * u, vb += v * v;
+            }
+        }
+    return cov / std::sqrt(va * vb);
+}
+
 const synth::TextureMap& small_map() {
     static const synth::TextureMap map = built_once("small_map", [] {
         synth::BuildParams params;

@@ -25,6 +25,10 @@ const synth::TextureMap& small_map();
 size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
                              const synth::Region& region, const cv::Mat& rendered);
 
+// Pearson correlation in CIELab (channels pooled) between `lab` (CV_32FC3) and itself shifted
+// by `lag`, over their overlap: what autocorrelation_peak measures at each lag.
+double correlation_at(const cv::Mat& lab, cv::Point lag);
+
 void write_file(const std::filesystem::path& path, const std::string& bytes);
 
 // A lattice's true (possibly fractional) translation vectors.

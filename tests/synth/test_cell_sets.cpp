@@ -92,26 +92,6 @@ std::string sha256_hex(const cv::Mat& m) {
     return hex;
 }
 
-// Pearson correlation in CIELab (channels pooled) between `lab` and itself shifted by `lag`,
-// over their overlap.
-double correlation_at(const cv::Mat& lab, cv::Point lag) {
-    const cv::Rect a(std::max(0, -lag.x), std::max(0, -lag.y), lab.cols - std::abs(lag.x),
-                     lab.rows - std::abs(lag.y));
-    const cv::Rect b = a + lag;
-    const cv::Mat pa = lab(a), pb = lab(b);
-    const cv::Scalar ma = cv::mean(pa), mb = cv::mean(pb);
-    double cov = 0, va = 0, vb = 0;
-    for (int y = 0; y < a.height; ++y)
-        for (int x = 0; x < a.width; ++x) {
-            const cv::Vec3f p = pa.at<cv::Vec3f>(y, x), q = pb.at<cv::Vec3f>(y, x);
-            for (int c = 0; c < 3; ++c) {
-                const double u = p[c] - ma[c], v = q[c] - mb[c];
-                cov += u * v, va += u * u, vb += v * v;
-            }
-        }
-    return cov / std::sqrt(va * vb);
-}
-
 // The periodic-grid detector: how much more a render correlates with itself one or two cells
 // away than half a cell off those lags. A plane that repeats its cell image correlates
 // strongly at whole cells and nowhere else; a plane without a grid looks the same at both.
@@ -121,8 +101,8 @@ double grid_contrast(const cv::Mat& rgb, int cw, int ch) {
                                        {cw, -ch}, {2 * cw, 0}, {0, 2 * ch}};
     double grid = 0, off = 0;
     for (const cv::Point& lag : on) {
-        grid += correlation_at(lab, lag);
-        off += correlation_at(lab, lag + cv::Point(cw / 2, ch / 2));
+        grid += tilejet::test::correlation_at(lab, lag);
+        off += tilejet::test::correlation_at(lab, lag + cv::Point(cw / 2, ch / 2));
     }
     return (grid - off) / double(on.size());
 }
