@@ -115,9 +115,12 @@ void run_info(const std::string& path) {
     j["cell_images"] = map.cell_images.size();
     j["corner_colours"] = map.corner_colours;
     j["variants"] = map.variants;
-    if (map.variants > 1)
-        j["variant_rule"] =
-            map.variant_rule == synth::TextureMap::VariantRule::parity ? "parity" : "break twins";
+    if (map.variants > 1) {
+        using Rule = synth::TextureMap::VariantRule;
+        j["variant_rule"] = map.variant_rule == Rule::parity        ? "parity"
+                            : map.variant_rule == Rule::break_twins ? "break twins"
+                                                                    : "hashed";
+    }
     j["patches_a"] = counts.a;  // over all cell images
     j["patches_b"] = counts.b;
     j["source_width"] = map.source.cols;
@@ -180,8 +183,9 @@ void add_map_commands(CLI::App& app) {
         "(default 2)");
     b->add_option("--variants", build->params.variants,
                   "cell images per combination of corner colours, 1 or 2: with 2 a cell shows "
-                  "the second where a neighbour has its combination, so no two cells across an "
-                  "edge show the same image and few across a vertex (default 2, but 1 for grain "
+                  "either by hash, but where a neighbour has its combination the one that parts "
+                  "them, so no two cells across an edge show the same image and few across a "
+                  "vertex (default 2, but 1 for grain "
                   "under 8 px in cells up to 320 px, and for cells over 320 px from a source "
                   "their set copies less than once)");
     b->add_option(

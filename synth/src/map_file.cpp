@@ -232,7 +232,8 @@ void read_overlaps(Reader& r, PatchSet& set) {
         word = r.le<uint64_t>("overlap bits");
 }
 
-// Only a set of two variants that does not show them by parity records its rule (version 3).
+// Only a set of two variants that does not show them by parity records its rule (version 3;
+// the hashed rule came later in the same version: older readers refuse it by name).
 bool records_variant_rule(const TextureMap& map) {
     return map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity;
 }
@@ -258,7 +259,8 @@ std::vector<Section> content_sections(const TextureMap& map) {
         w.le<uint32_t>(uint32_t(map.corner_colours));
         // Only sets of variants carry it, so that sets of one image per combination keep their id.
         if (map.variants > 1) w.le<uint32_t>(uint32_t(map.variants));
-        // Likewise only sets whose variants break twins: parity maps keep their id.
+        // Likewise only sets whose variants break twins (hashed or not): parity maps keep
+        // their id.
         if (records_variant_rule(map)) w.le<uint32_t>(uint32_t(map.variant_rule));
         out.push_back({"CSET", 0, std::move(w.bytes)});
     }
@@ -539,9 +541,9 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
             r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
                    " need " + std::to_string(k * k * k * k * v) + " cell images, the map holds " +
                    std::to_string(images));
-        if (rule > uint32_t(TextureMap::VariantRule::break_twins))
+        if (rule > uint32_t(TextureMap::VariantRule::hashed))
             r.fail("variant rule " + std::to_string(rule) +
-                   " is unknown (0 parity, 1 break twins)");
+                   " is unknown (0 parity, 1 break twins, 2 hashed)");
         if (rule != 0 && version < 3)
             r.fail("variant rule " + std::to_string(rule) + " in a map of format version " +
                    std::to_string(version) + " (it came with version 3)");

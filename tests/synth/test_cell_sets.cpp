@@ -123,7 +123,7 @@ void require_seamless(const TextureMap& map) {
     const int k = map.corner_colours, variants = map.variants;
     // With the parity rule the cells across an edge show the other variant; breaking twins,
     // either variant may stand beside either.
-    const bool any_variants = map.variant_rule == TextureMap::VariantRule::break_twins;
+    const bool any_variants = map.variant_rule != TextureMap::VariantRule::parity;
     const int cell = map.cell_images[0].pixels.cols;
     std::vector<cv::Mat> lab, lab_t;  // each image in CIELab, and transposed for vertical pairs
     for (const CellImage& image : map.cell_images) {
@@ -177,7 +177,7 @@ TEST_CASE("any two neighbouring cells of a set meet seamlessly, for every pair t
     const TextureMap& map = small_set();
     REQUIRE(map.corner_colours == 2);
     REQUIRE(map.variants == 2);
-    REQUIRE(map.variant_rule == TextureMap::VariantRule::break_twins);
+    REQUIRE(map.variant_rule == TextureMap::VariantRule::hashed);
     REQUIRE(map.cell_images.size() == 32);
     require_seamless(map);
 }
@@ -335,6 +335,17 @@ TEST_CASE("the cell image of a cell is uniform over the set (chi-square)", "[cel
     INFO("cells showing the second variant: " << second / (side * side));
     CHECK(second > 0.1 * side * side);
     CHECK(second < 0.35 * side * side);
+    // Hashed, every image of the set shows about equally often, twins broken or not.
+    map.variant_rule = TextureMap::VariantRule::hashed;
+    std::vector<double> shown(32, 0);
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const uint32_t m = cell_image_index(map, 99, {i - 150, j + 7000});
+            REQUIRE(m < 32);
+            ++shown[m];
+        }
+    // 31 degrees of freedom.
+    CHECK(chi_square(shown) < 61.1);
     map.corner_colours = 3, map.variants = 1;
     // Another seed picks differently.
     const bool differs = cell_image_index(map, 100, {0, 0}) != cell_image_index(map, 99, {0, 0}) ||
@@ -372,6 +383,8 @@ TEST_CASE("variants keep a cell's eight neighbours from showing its image", "[ce
     const Twins parity = twins();
     map.variant_rule = TextureMap::VariantRule::break_twins;
     const Twins broken = twins();
+    map.variant_rule = TextureMap::VariantRule::hashed;
+    const Twins hashed = twins();
     INFO("pairs showing one image, of 80000 across an edge / 80000 across a vertex: one variant "
          << one.edge << " / " << one.vertex << ", by parity " << parity.edge << " / "
          << parity.vertex << ", breaking twins " << broken.edge << " / " << broken.vertex);
@@ -381,6 +394,11 @@ TEST_CASE("variants keep a cell's eight neighbours from showing its image", "[ce
     CHECK(parity.vertex > 80000 / 16 * 8 / 10);
     CHECK(broken.edge == 0);
     CHECK(broken.vertex < one.vertex / 3);
+    // Hashed, cells without a twin pick either variant: twins are parted as before, and two
+    // cells of different combinations never show one image anyway.
+    INFO("hashed " << hashed.edge << " / " << hashed.vertex);
+    CHECK(hashed.edge == 0);
+    CHECK(hashed.vertex < one.vertex / 3);
 }
 
 TEST_CASE("by default a set has two variants whatever the grain, but one for slab scans",
@@ -400,10 +418,10 @@ TEST_CASE("by default a set has two variants whatever the grain, but one for sla
     REQUIRE(of_fine.build.grain < of_coarse.build.grain);
     CHECK(of_fine.variants == 2);
     CHECK(of_fine.cell_images.size() == 32);
-    CHECK(of_fine.variant_rule == TextureMap::VariantRule::break_twins);
+    CHECK(of_fine.variant_rule == TextureMap::VariantRule::hashed);
     CHECK(of_coarse.variants == 2);
     CHECK(of_coarse.cell_images.size() == 32);
-    CHECK(of_coarse.variant_rule == TextureMap::VariantRule::break_twins);
+    CHECK(of_coarse.variant_rule == TextureMap::VariantRule::hashed);
     // Cells over kLargeCell (320 px) that copy their source more than once get two whatever
     // the grain; so do cells given by --cell, whose grain is not measured.
     p.cell_size = 336;
@@ -587,7 +605,7 @@ TEST_CASE("a set's variants survive saving, and a count that does not fit is ref
         const std::vector<uint8_t> bytes = encode_texture_map(map);
         const TextureMap again = decode_texture_map(bytes, "again");
         REQUIRE(again.variants == 2);
-        REQUIRE(again.variant_rule == TextureMap::VariantRule::break_twins);
+        REQUIRE(again.variant_rule == TextureMap::VariantRule::hashed);
         REQUIRE(again.id == map.id);
         REQUIRE(bytes[8] == 3);  // the format version the rule came with
         // A version 2 reader would take it for a parity map and render other tiles: a file
@@ -596,7 +614,7 @@ TEST_CASE("a set's variants survive saving, and a count that does not fit is ref
         claimed_2[8] = 2;
         CHECK_THROWS_WITH(decode_texture_map(claimed_2, "crafted.tjmap"),
                           Catch::Contains("crafted.tjmap") &&
-                              Catch::Contains("variant rule 1 in a map of format version 2"));
+                              Catch::Contains("variant rule 2 in a map of format version 2"));
         // The rule is content: the same images by parity are another map, of version 2.
         TextureMap by_parity = map;
         by_parity.variant_rule = TextureMap::VariantRule::parity;

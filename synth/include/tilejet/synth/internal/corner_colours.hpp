@@ -10,7 +10,8 @@
 // With K = 2 two neighbours show one combination one time in 16 across an edge and across a
 // vertex alike, and a cell has eight neighbours: on a wall about two cells in five touched a
 // copy of themselves, the motif doubled that the eye and `tilejet eval`'s periodicity find
-// first. Sets of two variants break those twins (TextureMap::VariantRule).
+// first. Sets of two variants break those twins (TextureMap::VariantRule); elsewhere a hash picks
+// the variant, so that the whole set shows.
 
 #include <cstdint>
 
@@ -25,7 +26,8 @@ class CornerColours {
         : k_(uint64_t(map.corner_colours)),
           variants_(map.variants),
           rule_(map.variant_rule),
-          key_(hash_combine(hash_combine(map.id64(), seed), kVertexStream)) {}
+          key_(hash_combine(hash_combine(map.id64(), seed), kVertexStream)),
+          variant_key_(hash_combine(hash_combine(map.id64(), seed), kVariantStream)) {}
 
     // Uniform in [0, K) by Lemire's multiply-shift: no division, bias below 2^-60 for small K.
     uint32_t colour(int64_t i, int64_t j) const {
@@ -35,7 +37,7 @@ class CornerColours {
     }
 
     // The cell image index of cell (i, j): its combination tl + K tr + K^2 bl + K^3 br, plus
-    // K^4 when it shows the second variant.
+    // K^4 times the variant it shows.
     uint32_t image(int64_t i, int64_t j) const {
         if (k_ == 1) return 0;
         const uint32_t c = combination(i, j);
@@ -53,14 +55,14 @@ class CornerColours {
     }
 
   private:
-    // VariantRule::break_twins. A cell none of whose eight neighbours has its combination shows
-    // the first variant. One with such a twin across an edge shows the variant of its parity,
-    // (i + j) mod 2, as in the parity rule, which differs from that of every cell across an
-    // edge; one whose twins are all across a vertex shows its column's, i mod 2, which differs
-    // from theirs. Twins across an edge see each other and both take the parity: none is left.
-    // Across a vertex one is left when one of the two also has a twin across an edge, as where
-    // four cells around a vertex share a combination (3 x 3 vertices of one colour, 1 in 256),
-    // which two variants cannot part anyway.
+    // VariantRule::break_twins and hashed. A cell none of whose eight neighbours has its
+    // combination shows the first variant (break_twins) or one by hash (hashed). One with such a
+    // twin across an edge shows the variant of its parity, (i + j) mod 2, as in the parity rule,
+    // which differs from that of every cell across an edge; one whose twins are all across a vertex
+    // shows its column's, i mod 2, which differs from theirs. Twins across an edge see each other
+    // and both take the parity: none is left. Across a vertex one is left when one of the two also
+    // has a twin across an edge, as where four cells around a vertex share a combination (3 x 3
+    // vertices of one colour, 1 in 256), which two variants cannot part anyway.
     uint32_t twin_breaking_variant(int64_t i, int64_t j, uint32_t c) const {
         bool across_vertex = false;
         for (int64_t dj = -1; dj <= 1; ++dj)
@@ -69,15 +71,19 @@ class CornerColours {
                 if (di == 0 || dj == 0) return uint32_t((i + j) & 1);
                 across_vertex = true;
             }
-        return across_vertex ? uint32_t(i & 1) : 0;
+        if (across_vertex) return uint32_t(i & 1);
+        if (rule_ != TextureMap::VariantRule::hashed) return 0;
+        const uint64_t h = hash_combine(hash_combine(variant_key_, uint64_t(i)), uint64_t(j));
+        return uint32_t(uint128(h) * uint64_t(variants_) >> 64);
     }
 
     // Keeps vertex colours independent of the activation hashes of the same map and seed.
-    static constexpr uint64_t kVertexStream = 0x636f726e6572ull;  // "corner"
+    static constexpr uint64_t kVertexStream = 0x636f726e6572ull;     // "corner"
+    static constexpr uint64_t kVariantStream = 0x76617269616e74ull;  // "variant"
     uint64_t k_;
     int variants_;
     TextureMap::VariantRule rule_;
-    uint64_t key_;
+    uint64_t key_, variant_key_;
 };
 
 }  // namespace tilejet::synth::detail
