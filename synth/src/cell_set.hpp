@@ -92,10 +92,11 @@ class CellSet {
     void choose_corner_blocks(const cv::Mat& source_z2);
     cv::Mat make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::Mat& usage,
                        std::vector<Placement>& placed) const;
-    // Image `index`, none of whose blocks copies a source window of `avoid` to the same place;
-    // its own blocks go to `placed`.
+    // Image `index`, whose blocks copy a source window of `avoid` to the same place only at a
+    // cost, and one of `banned` (if any) never; its own blocks go to `placed`.
     cv::Mat make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
-                       const cv::Mat& all_uses, std::vector<Placement>& placed) const;
+                       const cv::Mat& all_uses, std::vector<Placement>& placed,
+                       const std::vector<Placement>* banned = nullptr) const;
 
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;

@@ -792,3 +792,40 @@ TEST_CASE("the two images of a set made side by side do not show one inside", "[
         CHECK(worst < inside.area() / 8);
     }
 }
+
+TEST_CASE("a cell keeps only the outer part of its frame, its own blocks take the rest",
+          "[cell_set]") {
+    // The two variants of one combination hold the same four strips: where both show them they
+    // are alike pixel for pixel. When cells kept all of their frames, a wall showed little of
+    // the source but what strips were cut from (cell_set.cpp, kept_frame()).
+    using tilejet::synth::detail::CellSet;
+    using tilejet::synth::detail::CellSetParams;
+    const cv::Mat& source = demo_exemplar();
+    CellSetParams params;
+    params.cell = {128, 128};
+    params.variants = 2;
+    const CellSet set(source, tilejet::synth::detail::to_lab(source), params);
+    REQUIRE(set.size() == 32);
+    const int frame = 128 / 10;  // the strips' half width
+    // Pixels alike, and pixels in all, at each chessboard distance from the cell's edge.
+    std::vector<double> alike(size_t(frame), 0), all(size_t(frame), 0);
+    for (size_t c = 0; c < 16; ++c) {
+        const cv::Mat &a = set.image(c), &b = set.image(c + 16);
+        for (int y = 0; y < 128; ++y)
+            for (int x = 0; x < 128; ++x) {
+                const int depth = std::min({x, y, 127 - x, 127 - y});
+                if (depth >= frame) continue;
+                all[size_t(depth)] += 1;
+                alike[size_t(depth)] += a.at<cv::Vec3b>(y, x) == b.at<cv::Vec3b>(y, x);
+            }
+    }
+    for (int depth = 0; depth < frame; ++depth)
+        UNSCOPED_INFO("depth " << depth << ": " << alike[size_t(depth)] / all[size_t(depth)]
+                               << " alike");
+    // The edge is the strips' (neighbours meet there), and so is most of the next pixels.
+    CHECK(alike[0] == all[0]);
+    CHECK(alike[1] > 0.5 * all[1]);
+    // Past the outer two fifths of the frame the images are their own.
+    for (int depth = frame / 2; depth < frame; ++depth)
+        CHECK(alike[size_t(depth)] < 0.2 * all[size_t(depth)]);
+}
