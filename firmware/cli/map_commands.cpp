@@ -119,7 +119,8 @@ void run_info(const std::string& path) {
         using Rule = synth::TextureMap::VariantRule;
         j["variant_rule"] = map.variant_rule == Rule::parity        ? "parity"
                             : map.variant_rule == Rule::break_twins ? "break twins"
-                                                                    : "hashed";
+                            : map.variant_rule == Rule::hashed      ? "hashed"
+                                                                    : "hashed, plain cells in four";
     }
     j["patches_a"] = counts.a;  // over all cell images
     j["patches_b"] = counts.b;

@@ -388,7 +388,9 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                           {cell_size, corner_colours, variants, params.seed, threads,
                            lattice ? &*lattice : nullptr, feather, cuts});
         map.corner_colours = corner_colours, map.variants = set.variants();
-        if (map.variants > 1) map.variant_rule = TextureMap::VariantRule::hashed;
+        if (map.variants > 1)
+            map.variant_rule = set.plain_in_four() ? TextureMap::VariantRule::plain_in_four
+                                                   : TextureMap::VariantRule::hashed;
         // Patches as large as a third of the cell where their seams are good: the size classes
         // of best_candidates keep the large ones that fit.
         const int max_radius = std::max(2, std::min(cell / 3, (source_side / 2 - 2) * 2 / 3));

@@ -6,6 +6,7 @@
 #include "graph_cut.hpp"
 #include "offset_matching.hpp"
 #include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/corner_colours.hpp"
 #include "tilejet/synth/internal/lab.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 #include "tilejet/synth/internal/parallel_for.hpp"
@@ -37,12 +38,13 @@ constexpr double kUsageCost = 0.5;
 // twice the usage cost, as the copy repeats where the eye compares, at the same place of two
 // cells. A hard ban left three blocks in five no window at all on the corpus's 384 px designs,
 // and they went in at random: seams, and the design's texture energy 1.32-1.47 times quilting's
-// (limestone, gravel, setts) against 1.13-1.29 with the cost.
+// (limestone, gravel, setts) against 1.13-1.29 with the cost. The very window (kRepeatReach) is
+// banned all the same (CellSet's constructor), a few dozen of thousands.
 constexpr double kSamePlaceCost = 1.0;
 // Fifths of the frame a cell keeps of its strips (kept_frame()).
 constexpr int kKeptFrameFifths = 2;
 // Two images' blocks copy the same window to the same place when their sources lie within this
-// many px (CellSet's constructor).
+// many px; an image may not (CellSet's constructor).
 constexpr int kRepeatReach = 4;
 // A source's few conspicuous features (the demo design's one white vein) catch the eye wherever
 // they recur. A region is conspicuous where its pixels are, on average over a sixteenth of the
@@ -310,24 +312,39 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // quilting's against 1.21 with one; why not yet known).
     const bool two_by_default = large_ || side <= kLargeCell;
     const size_t variants = size_t(params.variants > 0 ? params.variants : two_by_default ? 2 : 1);
-    images_.resize(combinations * variants);
+    variants_ = int(variants);
+    plain_in_four_ = variants == 2 && params.plain_in_four;
+    images_.resize(cell_image_count(
+        uint32_t(k_), uint32_t(variants),
+        plain_in_four_ ? TextureMap::VariantRule::plain_in_four : TextureMap::VariantRule::hashed));
     // But the source's conspicuous features are charged for every copy any variant made: a
     // vein shows in about one image of the whole set, not one of each variant (the demo's white
     // vein stood as a straight-sided block in a second-variant image).
     std::vector<Placement> placed;
+    // Every block of every variant: what no image may copy to its very place again (below).
+    std::vector<Placement> earlier;
     // Accounts of their own: large cells' variants, each from what the strips left.
     const bool fresh_accounts = variants > 1 && large_;
     const cv::Mat after_strips = fresh_accounts ? usage.clone() : cv::Mat();
     cv::Mat all_uses = fresh_accounts ? usage.clone() : cv::Mat();  // else `usage` is all uses
     for (size_t variant = 0; variant < variants; ++variant) {
         if (variant > 0 && fresh_accounts) after_strips.copyTo(usage), placed.clear();
-        for (size_t begin = 0; begin < combinations; begin += kImageBatch) {
-            const size_t end = std::min(combinations, begin + kImageBatch);
+        // The plain combinations' further variants come last, with the last variant's.
+        const size_t count =
+            variant + 1 < variants ? combinations : images_.size() - variant * combinations;
+        for (size_t begin = 0; begin < count; begin += kImageBatch) {
+            const size_t end = std::min(count, begin + kImageBatch);
             const size_t first = variant * combinations + begin;
             std::vector<std::vector<Placement>> batch(end - begin);
+            // No image copies an earlier one's window to its very place: where images share a
+            // strip, the strip's own continuation in the source matches its frame at no cost at
+            // all, the same-place cost notwithstanding, and image after image took it. Up to 61 %
+            // of two images' insides were alike pixel for pixel (limestone at map seed 2, whose
+            // periodicity that drew to 1.24, 0.49 with the ban).
             parallel_for(end - begin, params.threads, [&](size_t i) {
-                images_[first + i] = make_image(first + i, placed, usage,
-                                                fresh_accounts ? all_uses : usage, batch[i]);
+                images_[first + i] =
+                    make_image(first + i, placed, usage, fresh_accounts ? all_uses : usage,
+                               batch[i], &earlier);
             });
             // Images of a batch do not see each other's blocks, and where one window fitted both
             // frames best, both copied it to the same place: two of limestone's 32 images (384
@@ -348,18 +365,21 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
                 // frames far better than any other window was copied again all the same (the
                 // demo design's right strip and its vein continued into two images, 128 px
                 // cells, map seeds 1 and 5, once cells kept less of their frames): the
-                // re-made image may not copy the mates' windows to their places at all.
-                std::vector<Placement> seen = placed, mates;
+                // re-made image may not copy the mates' windows to their places at all, nor
+                // those of earlier batches.
+                std::vector<Placement> seen = placed, mates, banned = earlier;
                 for (size_t j = 0; j < i; ++j)
                     mates.insert(mates.end(), batch[j].begin(), batch[j].end());
                 seen.insert(seen.end(), mates.begin(), mates.end());
+                banned.insert(banned.end(), mates.begin(), mates.end());
                 batch[i].clear();
                 images_[first + i] = make_image(
-                    first + i, seen, usage, fresh_accounts ? all_uses : usage, batch[i], &mates);
+                    first + i, seen, usage, fresh_accounts ? all_uses : usage, batch[i], &banned);
             }
             for (const auto& b : batch) {
                 unmatched_blocks_ += size_t(std::ranges::count(b, false, &Placement::matched));
                 placed.insert(placed.end(), b.begin(), b.end());
+                earlier.insert(earlier.end(), b.begin(), b.end());
                 count_uses(usage, b);
                 if (fresh_accounts) count_uses(all_uses, b);
             }
@@ -716,9 +736,10 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
 cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, const cv::Mat& usage,
                             const cv::Mat& all_uses, std::vector<Placement>& placed,
                             const std::vector<Placement>* banned) const {
-    const size_t k = size_t(k_);
-    const uint32_t tl = uint32_t(index % k), tr = uint32_t(index / k % k),
-                   bl = uint32_t(index / k / k % k), br = uint32_t(index / k / k / k % k);
+    const size_t k = size_t(k_), combination = cell_image_key(uint32_t(k_), index).combination;
+    const uint32_t tl = uint32_t(combination % k), tr = uint32_t(combination / k % k),
+                   bl = uint32_t(combination / k / k % k),
+                   br = uint32_t(combination / k / k / k % k);
     Canvas canvas({cw_, ch_});
     // The frame: the cell's halves of its four strips. In each corner the horizontal and the
     // vertical strip overlap; the corner is cut between them, the horizontal one along the
@@ -797,12 +818,11 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
 }
 
 cv::Mat CellSet::neighbourhood(size_t index) const {
-    const size_t k = size_t(k_), combinations = k * k * k * k;
-    const uint32_t corner[2][2] = {{uint32_t(index % k), uint32_t(index / k % k)},
-                                   {uint32_t(index / k / k % k), uint32_t(index / k / k / k % k)}};
-    // The neighbours show the first variant, as about four cells in five do (twins apart,
-    // corner_colours.hpp).
-    const size_t variant = index / combinations;
+    const size_t k = size_t(k_), combination = cell_image_key(uint32_t(k_), index).combination;
+    const uint32_t corner[2][2] = {
+        {uint32_t(combination % k), uint32_t(combination / k % k)},
+        {uint32_t(combination / k / k % k), uint32_t(combination / k / k / k % k)}};
+    // The neighbours show the first variant (any would do: they differ inside only).
     // Vertices beyond the cell's own four take the colour of the nearest of them.
     const auto colour = [&](int vi, int vj) {
         return corner[std::clamp(vj, 0, 1)][std::clamp(vi, 0, 1)];
@@ -811,9 +831,10 @@ cv::Mat CellSet::neighbourhood(size_t index) const {
     for (int j = -1; j <= 1; ++j)
         for (int i = -1; i <= 1; ++i) {
             const size_t m =
-                colour(i, j) +
-                k * (colour(i + 1, j) + k * (colour(i, j + 1) + k * colour(i + 1, j + 1))) +
-                combinations * (i == 0 && j == 0 ? variant : 0);
+                i == 0 && j == 0
+                    ? index
+                    : colour(i, j) + k * (colour(i + 1, j) +
+                                          k * (colour(i, j + 1) + k * colour(i + 1, j + 1)));
             images_[m].copyTo(out(cv::Rect((i + 1) * cw_, (j + 1) * ch_, cw_, ch_)));
         }
     return out;

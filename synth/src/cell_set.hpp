@@ -58,6 +58,9 @@ struct CellSetParams {
     // Whole: every cut exact. Auto, for enlarged exemplars: large windows cut coarse to fine
     // (graph_cut.hpp), which loses nothing on a source with nothing sharper than a few px.
     CutLevels cuts = CutLevels::Whole;
+    // With two variants, plain combinations (one colour at all four corners) get four
+    // (TextureMap::VariantRule::plain_in_four), after the K^4 V others.
+    bool plain_in_four = true;
 };
 
 class CellSet {
@@ -70,9 +73,11 @@ class CellSet {
     static cv::Size smallest_source(cv::Size cell);
 
     size_t size() const { return images_.size(); }
-    int variants() const { return int(images_.size() / size_t(k_ * k_ * k_ * k_)); }
-    // Cell image tl + K tr + K^2 bl + K^3 br + K^4 variant (the order of corner_colours.hpp),
-    // CV_8UC3 R,G,B.
+    int variants() const { return variants_; }
+    // Whether plain combinations have four variants (CellSetParams::plain_in_four, with two).
+    bool plain_in_four() const { return plain_in_four_; }
+    // Cell image tl + K tr + K^2 bl + K^3 br + K^4 variant, then the plain combinations' variants
+    // 2 and 3 (cell_image_slot() of corner_colours.hpp), CV_8UC3 R,G,B.
     const cv::Mat& image(size_t index) const { return images_[index]; }
 
     // The plane around a cell that shows image `index`: 3 x 3 cells, the cell in the middle.
@@ -102,6 +107,8 @@ class CellSet {
     const cv::Mat& source_lab_;
     CellSetParams params_;
     int k_, cw_, ch_, w_, c_, overlap_, strip_block_, strip_overlap_;
+    int variants_ = 1;
+    bool plain_in_four_ = false;
     cv::Size block_;  // the blocks cells are quilted with
     double usage_weight_ = 0;
     double same_place_weight_ = 0;

@@ -16,6 +16,7 @@
 #include <map>
 
 #include "tilejet/synth/exemplar.hpp"
+#include "tilejet/synth/internal/corner_colours.hpp"
 #include "tilejet/synth/internal/diamond.hpp"
 
 namespace tilejet::synth {
@@ -46,8 +47,10 @@ constexpr std::array<std::string_view, 10> kKnownTags = {"META", "CSET", "PHYS",
 constexpr int kMaxCellSide = 8192, kMaxSourceSide = 16384;
 constexpr int kMaxCornerColours = 4;
 constexpr int kMaxVariants = 2;  // the (i + j) mod 2 rule of corner_colours.hpp
+// With VariantRule::plain_in_four, plain combinations' variants 2 and 3 besides.
 constexpr uint32_t kMaxCellImages =
-    kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxVariants;
+    kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxCornerColours * kMaxVariants +
+    kMaxCornerColours * (detail::kPlainVariants - kMaxVariants);
 
 // Fuzzing builds skip the checksums and the id check, so that mutated files reach the parser and
 // the checks behind it (patch bounds, diamonds) instead of stopping at the first CRC.
@@ -233,7 +236,8 @@ void read_overlaps(Reader& r, PatchSet& set) {
 }
 
 // Only a set of two variants that does not show them by parity records its rule (version 3;
-// the hashed rule came later in the same version: older readers refuse it by name).
+// the hashed and plain-in-four rules came later in the same version: older readers refuse them by
+// name).
 bool records_variant_rule(const TextureMap& map) {
     return map.variants > 1 && map.variant_rule != TextureMap::VariantRule::parity;
 }
@@ -537,19 +541,20 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (v < 1 || v > uint32_t(kMaxVariants))
             r.fail("variants " + std::to_string(v) + " is out of range (1 to " +
                    std::to_string(kMaxVariants) + ")");
-        if (uint64_t(k) * k * k * k * v != images)
-            r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
-                   " need " + std::to_string(k * k * k * k * v) + " cell images, the map holds " +
-                   std::to_string(images));
-        if (rule > uint32_t(TextureMap::VariantRule::hashed))
+        if (rule > uint32_t(TextureMap::VariantRule::plain_in_four))
             r.fail("variant rule " + std::to_string(rule) +
-                   " is unknown (0 parity, 1 break twins, 2 hashed)");
+                   " is unknown (0 parity, 1 break twins, 2 hashed, 3 plain cells in four)");
         if (rule != 0 && version < 3)
             r.fail("variant rule " + std::to_string(rule) + " in a map of format version " +
                    std::to_string(version) + " (it came with version 3)");
         if (rule != 0 && v < 2)
             r.fail("variant rule " + std::to_string(rule) + " needs 2 variants, the map has " +
                    std::to_string(v));
+        if (const size_t needed = detail::cell_image_count(k, v, TextureMap::VariantRule(rule));
+            needed != images)
+            r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
+                   (rule == 3 ? ", plain ones in 4," : "") + " need " + std::to_string(needed) +
+                   " cell images, the map holds " + std::to_string(images));
         map.corner_colours = int(k), map.variants = int(v);
         map.variant_rule = TextureMap::VariantRule(rule);
     }

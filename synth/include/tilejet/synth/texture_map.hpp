@@ -97,7 +97,8 @@ struct TextureMap {
     // V: cell images per combination of corner colours, cell_images[combination + K^4 v]. With
     // K = 2 and one image per combination, one edge in 16 and one vertex in 16 joined two
     // copies of one image: a motif doubled side by side. With V = 2 the variant rule below
-    // keeps such neighbours apart.
+    // keeps such neighbours apart (and with VariantRule::plain_in_four plain combinations have
+    // four).
     int variants = 1;
     // Which variant a cell of a set of two shows (corner_colours.hpp).
     enum class VariantRule : uint32_t {
@@ -115,6 +116,16 @@ struct TextureMap {
         // quarter-tile window pixel for pixel, 4.3 % hashed (the corpus at map seeds 1 and 2,
         // session 30).
         hashed = 2,
+        // As hashed, but a plain cell, whose four corners have one colour, shows one of four
+        // variants. Plain cells are the only ones that can have twins across an edge and across
+        // a vertex at once: four of one combination round a vertex (3 x 3 vertices of one
+        // colour, one in 256) cannot all differ in two variants, and on the corpus such diagonal
+        // twins, 1.3 % of diagonal pairs, were what was left of the cell grid (limestone's
+        // periodicity 1.24 at map seed 2, session 31). With four, plain twins take the variant
+        // (i mod 2) + 2 (j mod 2), and no two of the eight neighbours of any cell show one image.
+        // The plain combinations' variants 2 and 3 follow the K^4 V others in cell_images
+        // (corner_colours.hpp).
+        plain_in_four = 3,
     };
     VariantRule variant_rule = VariantRule::parity;
     cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
