@@ -185,8 +185,9 @@ void add_map_commands(CLI::App& app) {
     b->add_option("--variants", build->params.variants,
                   "cell images per combination of corner colours, 1 or 2: with 2 a cell shows "
                   "either by hash, but where a neighbour has its combination the one that parts "
-                  "them, so no two cells across an edge show the same image and few across a "
-                  "vertex (default 2, but 1 for grain "
+                  "them; plain combinations (one colour at all four corners) get 4, so no two "
+                  "neighbours across an edge or a vertex show the same image (default 2, but 1 "
+                  "for grain "
                   "under 8 px in cells up to 320 px, and for cells over 320 px from a source "
                   "their set copies less than once)");
     b->add_option(

@@ -23,9 +23,9 @@ struct BuildParams {
     // 61 s for a 384 px exemplar and 15 MB. The hash still picks among 16 images per cell, with
     // their own patches over them, and no grid showed on walls of either.
     int corner_colours = 2;
-    // V cell images per combination of corner colours, K^4 V in all; with 2 a cell shows either
-    // by hash, but where a neighbour has its combination the one that parts them
-    // (TextureMap::VariantRule): with one,
+    // V cell images per combination of corner colours, K^4 V in all (with 2, plain combinations
+    // get 4: K^4 2 + 2 K); with 2 a cell shows one by hash, but where a neighbour has its
+    // combination the one that parts them (TextureMap::VariantRule): with one,
     // about two cells in five touched a copy of themselves, the motif doubled that the eye and
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
     // 0: default, 2, but 1 for cells over 320 px from a source they copy less than once (slab
