@@ -20,6 +20,7 @@
 #include "tilejet/colour/exemplar_profile.hpp"
 #include "tilejet/quality/cell_place_energy.hpp"
 #include "tilejet/quality/cell_place_repeat.hpp"
+#include "tilejet/quality/cell_place_tails.hpp"
 #include "tilejet/quality/colour_match.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/quality/periodicity.hpp"
@@ -336,10 +337,20 @@ void run_eval(const EvalOptions& o) {
                                                {"cells", fold.cells}};
     page.gates.cell_border_repeat = fold.border, page.gates.cell_inside_repeat = fold.inside;
     progress.say("tilejet: texture coherence by place in the cell");
-    const quality::CellPlaceEnergy place =
-        quality::cell_place_energy(map, spec.seed, *shared.energy, kEnergySamples / 2, o.threads);
+    const cv::Mat place_plane = quality::cell_place_plane(map, spec.seed, o.threads);
+    const cv::Size cell(map.cell_width, map.cell_height);
+    const quality::CellPlaceEnergy place = quality::cell_place_energy(
+        place_plane, cell, *shared.energy, kEnergySamples / 2, spec.seed);
     section("tilejet")["cell_place_energy"] = {
         {"border", place.border}, {"inside", place.inside}, {"band_px", place.band}};
+    progress.say("tilejet: the stone's extremes by place in the cell");
+    const quality::CellPlaceTails tails = quality::cell_place_tails(place_plane, cell);
+    section("tilejet")["cell_place_tails"] = {{"border_light", tails.border_light},
+                                              {"inside_light", tails.inside_light},
+                                              {"border_dark", tails.border_dark},
+                                              {"inside_dark", tails.inside_dark},
+                                              {"band_px", tails.band}};
+    page.gates.light_border = tails.border_light, page.gates.light_inside = tails.inside_light;
     page.gates.coherence_border = place.border, page.gates.coherence_inside = place.inside;
     page.gates.quilt_coherence = section("quilt").value("texture_coherence", 0.0);
     progress.say("walls side by side");

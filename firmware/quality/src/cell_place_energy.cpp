@@ -41,13 +41,17 @@ CellPlaceEnergy cell_place_energy(const cv::Mat& plane, cv::Size cell, const Tex
     return r;
 }
 
-CellPlaceEnergy cell_place_energy(const synth::TextureMap& map, uint64_t seed,
-                                  const TextureEnergy& energy, size_t samples, int threads) {
+cv::Mat cell_place_plane(const synth::TextureMap& map, uint64_t seed, int threads) {
     const int cw = map.cell_width, ch = map.cell_height;
     const int across = std::clamp(kEnergyMostSide / cw, kEnergyFewestCells, kEnergyMostCells);
     const int down = std::clamp(kEnergyMostSide / ch, kEnergyFewestCells, kEnergyMostCells);
-    const cv::Mat plane = synth::render_region(map, seed, {0, 0, across * cw, down * ch}, threads);
-    return cell_place_energy(plane, {cw, ch}, energy, samples, seed);
+    return synth::render_region(map, seed, {0, 0, across * cw, down * ch}, threads);
+}
+
+CellPlaceEnergy cell_place_energy(const synth::TextureMap& map, uint64_t seed,
+                                  const TextureEnergy& energy, size_t samples, int threads) {
+    return cell_place_energy(cell_place_plane(map, seed, threads),
+                             {map.cell_width, map.cell_height}, energy, samples, seed);
 }
 
 }  // namespace tilejet::quality

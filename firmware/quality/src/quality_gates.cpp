@@ -33,6 +33,8 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["coherence_border"] = g.coherence_border;
     j["coherence_inside"] = g.coherence_inside;
     j["quilt_coherence"] = g.quilt_coherence;
+    j["light_border"] = g.light_border;
+    j["light_inside"] = g.light_inside;
     return j;
 }
 

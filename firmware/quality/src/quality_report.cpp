@@ -173,7 +173,13 @@ std::string gates_html(const ReportPage& page) {
          "closer), along the cell borders / inside the cells; the quilt wall's: "
       << gate_figure(g.quilt_coherence)
       << ". The borders are where a cell's inside is cut into the strips it shares with its "
-         "neighbours</div></div></div><p>Both gates pass at "
+         "neighbours</div></div>"
+      << "<div class='gate'><div class='label'>lightest 5 % by place</div><div class='value'>"
+      << gate_figure(g.light_border * 100) << " % / " << gate_figure(g.light_inside * 100)
+      << " %</div><div class='what'>share of tilejet's plane in its own lightest 5 % (veins "
+         "and flecks), along the cell borders / inside the cells: about 5 % each where the "
+         "wall shows them anywhere, lower along the borders where calm frames draw the cell "
+         "grid</div></div></div><p>Both gates pass at "
       << gate_figure(g.limit) << " or below (1 = as good as quilting every tile offline).</p>";
     return h.str();
 }

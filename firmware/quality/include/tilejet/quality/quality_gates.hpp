@@ -33,6 +33,10 @@ struct QualityGates {
     // (cell_place_energy.hpp), and the quilt wall's over the whole wall, to compare with. Set
     // by eval; 0 when not measured.
     double coherence_border = 0, coherence_inside = 0, quilt_coherence = 0;
+    // Nor these: the share of tilejet's plane in its own lightest 5 %, along the cell borders
+    // and inside (cell_place_tails.hpp): calm lines along the cells where the border's is the
+    // lower. Set by eval; 0 when not measured.
+    double light_border = 0, light_inside = 0;
 
     // A figure that could not be measured does not pass: the report cannot vouch for it.
     bool periodicity_pass() const { return periodicity && *periodicity <= limit; }
