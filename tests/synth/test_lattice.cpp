@@ -105,6 +105,25 @@ TEST_CASE("a lattice-aware map keeps the exemplar's lattice at four times its si
     REQUIRE_FALSE(same_lattice(off, brick));
 }
 
+TEST_CASE("on a lattice plain cells keep two variants", "[lattice][build][heavy]") {
+    // Made last, a lattice set's extra variants of plain cells found few lattice windows left
+    // that no earlier image had copied to their places: the corpus's brick wall lost texture
+    // energy with them (build.cpp). Off a lattice they are made (test_cell_sets.cpp).
+    const cv::Mat exemplar = make_lattice_texture({{40, 0}, {20, 17}}, {233, 191}, 4);
+    BuildParams p;
+    p.variants = 2;
+    p.patches = 2;
+    p.candidates = 2;
+    const TextureMap on = build_texture_map(exemplar, p);
+    CHECK(on.variants == 2);
+    CHECK(on.variant_rule == TextureMap::VariantRule::hashed);
+    CHECK(on.cell_images.size() == 32);
+    p.lattice = BuildParams::Lattice::Off;
+    const TextureMap off = build_texture_map(exemplar, p);
+    CHECK(off.variant_rule == TextureMap::VariantRule::plain_in_four);
+    CHECK(off.cell_images.size() == 36);
+}
+
 TEST_CASE("brick courses with joints anywhere are found, to a fraction of a pixel",
           "[lattice][courses]") {
     for (const double pitch : {16.6, 21.3, 27.0})

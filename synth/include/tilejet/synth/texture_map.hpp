@@ -124,7 +124,7 @@ struct TextureMap {
         // periodicity 1.24 at map seed 2, session 31). With four, plain twins take the variant
         // (i mod 2) + 2 (j mod 2), and no two of the eight neighbours of any cell show one image.
         // The plain combinations' variants 2 and 3 follow the K^4 V others in cell_images
-        // (corner_colours.hpp).
+        // (corner_colours.hpp). Not built on a lattice (build.cpp).
         plain_in_four = 3,
     };
     VariantRule variant_rule = VariantRule::parity;
