@@ -550,13 +550,15 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (rule != 0 && v < 2)
             r.fail("variant rule " + std::to_string(rule) + " needs 2 variants, the map has " +
                    std::to_string(v));
-        if (const size_t needed = detail::cell_image_count(k, v, TextureMap::VariantRule(rule));
-            needed != images)
+        const auto variant_rule = TextureMap::VariantRule(rule);
+        if (const size_t needed = detail::cell_image_count(k, v, variant_rule); needed != images)
             r.fail(std::to_string(k) + " corner colours" + (v > 1 ? " in 2 variants" : "") +
-                   (rule == 3 ? ", plain ones in 4," : "") + " need " + std::to_string(needed) +
-                   " cell images, the map holds " + std::to_string(images));
+                   (variant_rule == TextureMap::VariantRule::plain_in_four ? ", plain ones in 4,"
+                                                                           : "") +
+                   " need " + std::to_string(needed) + " cell images, the map holds " +
+                   std::to_string(images));
         map.corner_colours = int(k), map.variants = int(v);
-        map.variant_rule = TextureMap::VariantRule(rule);
+        map.variant_rule = variant_rule;
     }
     {
         Reader r = section("SRCE", 0);

@@ -26,9 +26,13 @@ inline constexpr uint32_t kPlainVariants = 4;
 inline uint32_t combinations_of(uint32_t k) {
     return k * k * k * k;
 }
-// Whether `combination` has one colour at all four corners: colour (1 + K + K^2 + K^3).
+// The plain combination of `colour`: that colour at all four corners.
+inline uint32_t plain_combination(uint32_t k, uint32_t colour) {
+    return colour * (1 + k + k * k + k * k * k);
+}
+// Whether `combination` has one colour at all four corners.
 inline bool is_plain(uint32_t k, uint32_t combination) {
-    return combination == combination % k * (1 + k + k * k + k * k * k);
+    return combination == plain_combination(k, combination % k);
 }
 
 // How many cell images a set of K corner colours, V variants and `rule` holds: K^4 V, and with
@@ -56,7 +60,7 @@ inline CellImageKey cell_image_key(uint32_t k, size_t index) {
     const size_t all = combinations_of(k);
     if (index < 2 * all) return {uint32_t(index % all), uint32_t(index / all)};
     const auto extra = uint32_t(index - 2 * all), colour = extra / (kPlainVariants - 2);
-    return {colour * (1 + k + k * k + k * k * k), 2 + extra % (kPlainVariants - 2)};
+    return {plain_combination(k, colour), 2 + extra % (kPlainVariants - 2)};
 }
 
 class CornerColours {
