@@ -18,6 +18,7 @@
 #include "commands.hpp"
 #include "tilejet/colour/cmyk_transform.hpp"
 #include "tilejet/colour/exemplar_profile.hpp"
+#include "tilejet/quality/cell_grid_lines.hpp"
 #include "tilejet/quality/cell_place_energy.hpp"
 #include "tilejet/quality/cell_place_repeat.hpp"
 #include "tilejet/quality/cell_place_tails.hpp"
@@ -123,6 +124,12 @@ void print_summary(const quality::ReportPage& page, const std::string& against,
     std::printf("  texture_energy vs quilt   %-8s %s\n",
                 quality::gate_figure(g.texture_energy_vs_quilt).c_str(),
                 quality::verdict(g.texture_energy_pass()));
+    std::printf(
+        "  lines along the cell grid %-8s %s (limit %s; along the rows %s, the columns %s)\n",
+        quality::gate_figure(g.grid_lines()).c_str(), quality::verdict(g.grid_lines_pass()),
+        quality::gate_figure(g.grid_lines_limit).c_str(),
+        quality::gate_figure(g.grid_lines_rows).c_str(),
+        quality::gate_figure(g.grid_lines_columns).c_str());
     std::printf("  patch coverage            %s %%\n",
                 quality::gate_figure(g.patch_coverage * 100).c_str());
     std::printf("  same place of the cell    %s %% along the borders, %s %% inside\n",
@@ -351,6 +358,14 @@ void run_eval(const EvalOptions& o) {
                                               {"inside_dark", tails.inside_dark},
                                               {"band_px", tails.band}};
     page.gates.light_border = tails.border_light, page.gates.light_inside = tails.inside_light;
+    progress.say("tilejet: lines along the cell grid");
+    const quality::CellGridLines lines =
+        quality::cell_grid_lines(quality::cell_grid_lines_plane(map, spec.seed, o.threads), cell);
+    section("tilejet")["cell_grid_lines"] = {{"rows", lines.rows},
+                                             {"columns", lines.columns},
+                                             {"row_at", lines.row_at},
+                                             {"column_at", lines.column_at}};
+    page.gates.grid_lines_rows = lines.rows, page.gates.grid_lines_columns = lines.columns;
     page.gates.coherence_border = place.border, page.gates.coherence_inside = place.inside;
     page.gates.quilt_coherence = section("quilt").value("texture_coherence", 0.0);
     progress.say("walls side by side");

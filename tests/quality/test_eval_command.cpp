@@ -38,8 +38,13 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(gates["texture_energy_vs_quilt"].get<double>() ==
           Approx(m["tilejet"]["texture_energy"].get<double>() /
                  m["quilt"]["texture_energy"].get<double>()));
+    CHECK(gates["grid_lines_limit"] == 1.15);
+    CHECK(gates["grid_lines"].get<double>() == std::max(gates["grid_lines_rows"].get<double>(),
+                                                        gates["grid_lines_columns"].get<double>()));
+    CHECK(gates["grid_lines_pass"] == (gates["grid_lines"].get<double>() <= 1.15));
     CHECK(gates["pass"] == (gates["periodicity"].get<double>() <= 1.2 &&
-                            gates["texture_energy_vs_quilt"].get<double>() <= 1.2));
+                            gates["texture_energy_vs_quilt"].get<double>() <= 1.2 &&
+                            gates["grid_lines"].get<double>() <= 1.15));
     const double coverage = m["tilejet"]["patch_coverage"];
     CHECK(gates["patch_coverage"] == coverage);
     CHECK(coverage > 0);
@@ -57,6 +62,13 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(gates["quilt_coherence"] == m["quilt"]["texture_coherence"]);
     CHECK(place["border"].get<double>() > 0);
     CHECK(place["inside"].get<double>() >= 0);
+    // Lines along the cell grid: in the gates as in tilejet's figures, where in the cell.
+    const auto& lines = m["tilejet"]["cell_grid_lines"];
+    CHECK(gates["grid_lines_rows"] == lines["rows"]);
+    CHECK(gates["grid_lines_columns"] == lines["columns"]);
+    CHECK(lines["rows"].get<double>() > 0);
+    CHECK(lines["row_at"].get<int>() >= 0);
+    CHECK(lines["column_at"].get<int>() < 64);
     for (const char* method : {"tilejet", "canvas", "cell", "quilt"}) {
         INFO(method);
         REQUIRE(m.contains(method));

@@ -25,6 +25,9 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["periodicity_pass"] = g.periodicity_pass();
     j["texture_energy_vs_quilt"] = value(g.texture_energy_vs_quilt);
     j["texture_energy_pass"] = g.texture_energy_pass();
+    j["grid_lines"] = value(g.grid_lines());
+    j["grid_lines_pass"] = g.grid_lines_pass();
+    j["grid_lines_limit"] = g.grid_lines_limit;
     j["pass"] = g.pass();
     j["limit"] = g.limit;
     j["patch_coverage"] = g.patch_coverage;
@@ -35,6 +38,8 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["quilt_coherence"] = g.quilt_coherence;
     j["light_border"] = g.light_border;
     j["light_inside"] = g.light_inside;
+    j["grid_lines_rows"] = value(g.grid_lines_rows);
+    j["grid_lines_columns"] = value(g.grid_lines_columns);
     return j;
 }
 

@@ -145,7 +145,7 @@ std::string gates_html(const ReportPage& page) {
     const QualityGates& g = page.gates;
     std::ostringstream h;
     auto gate = [&](const char* label, const std::optional<double>& value, bool pass,
-                    const char* what) {
+                    const std::string& what) {
         h << "<div class='gate " << (pass ? "pass" : "fail") << "'><div class='label'>" << label
           << "</div><div class='value'>" << gate_figure(value) << " <b>" << verdict(pass)
           << "</b></div><div class='what'>" << what << "</div></div>";
@@ -157,6 +157,13 @@ std::string gates_html(const ReportPage& page) {
     gate("texture_energy vs quilt", g.texture_energy_vs_quilt, g.texture_energy_pass(),
          "tilejet's texture energy divided by the quilt baseline's, both ways: the wall's "
          "8x8 neighbourhoods against the exemplar's and the exemplar's against the wall's");
+    gate("lines along the cell grid", g.grid_lines(), g.grid_lines_pass(),
+         "how much more tilejet's tone changes, blurred to a fortieth of the cell, at its "
+         "strongest place in the cell than at any place of an unrelated period, the stronger of "
+         "along the rows and along the columns (" +
+             gate_figure(g.grid_lines_rows) + " / " + gate_figure(g.grid_lines_columns) +
+             "): about 1 where seams lie anywhere; over " + gate_figure(g.grid_lines_limit) +
+             " the cells show as squares from a few steps back");
     h << "<div class='gate'><div class='label'>patch coverage</div><div class='value'>"
       << gate_figure(g.patch_coverage * 100)
       << " %</div><div class='what'>share of tilejet's wall showing a patch; the rest shows the "
@@ -179,8 +186,10 @@ std::string gates_html(const ReportPage& page) {
       << " %</div><div class='what'>share of tilejet's plane in its own lightest 5 % (veins "
          "and flecks), along the cell borders / inside the cells: about 5 % each where the "
          "wall shows them anywhere, lower along the borders where calm frames draw the cell "
-         "grid</div></div></div><p>Both gates pass at "
-      << gate_figure(g.limit) << " or below (1 = as good as quilting every tile offline).</p>";
+         "grid</div></div></div><p>The first two gates pass at "
+      << gate_figure(g.limit)
+      << " or below (1 = as good as quilting every tile offline), the third at "
+      << gate_figure(g.grid_lines_limit) << " or below.</p>";
     return h.str();
 }
 

@@ -1,10 +1,14 @@
 #pragma once
 
-// The quality report's two gates (issue 16, point 5): a wall must not look like a grid
+// The quality report's gates (issue 16, point 5): a wall must not look like a grid
 // (periodicity against the quilted reference) and must look like the exemplar as closely as
 // quilting does (texture energy against the quilt baseline). The report opens with them because
 // they are what decides whether a design is fit to print; every other figure explains them.
+// A third since session 32: no lines along the cell grid (cell_grid_lines.hpp). Walls that
+// passed both showed their cells as squares at half size (marble, limestone, slate, wood), a
+// grid whose seams differ from cell to cell, so that autocorrelation does not find it.
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -14,6 +18,10 @@ namespace tilejet::quality {
 // Both figures are ratios to quilting, so one limit serves both: 20 % worse than the offline
 // reference is what the issue allows.
 inline constexpr double kGateLimit = 1.2;
+// Lines along the cell grid, against the wall's own unevenness: at 1.06-1.13 (the corpus's
+// gravel, setts, terrazzo) no line shows at half size; at 1.24 and more (limestone, marble,
+// slate, wood before session 32) the cells show as squares.
+inline constexpr double kGridLinesLimit = 1.15;
 
 struct QualityGates {
     double limit = kGateLimit;
@@ -37,13 +45,27 @@ struct QualityGates {
     // and inside (cell_place_tails.hpp): calm lines along the cells where the border's is the
     // lower. Set by eval; 0 when not measured.
     double light_border = 0, light_inside = 0;
+    // And a gate: how much more the tone of tilejet's plane changes at its strongest place of the
+    // cell than elsewhere, along the rows and the columns (cell_grid_lines.hpp): 1 where no line
+    // follows the cell borders. Set by eval after quality_gates().
+    // The gate is on the stronger of the two. Empty when not measured.
+    std::optional<double> grid_lines_rows, grid_lines_columns;
+    double grid_lines_limit = kGridLinesLimit;
 
     // A figure that could not be measured does not pass: the report cannot vouch for it.
     bool periodicity_pass() const { return periodicity && *periodicity <= limit; }
     bool texture_energy_pass() const {
         return texture_energy_vs_quilt && *texture_energy_vs_quilt <= limit;
     }
-    bool pass() const { return periodicity_pass() && texture_energy_pass(); }
+    bool grid_lines_pass() const {
+        return grid_lines_rows && grid_lines_columns && *grid_lines_rows <= grid_lines_limit &&
+               *grid_lines_columns <= grid_lines_limit;
+    }
+    std::optional<double> grid_lines() const {
+        if (!grid_lines_rows || !grid_lines_columns) return {};
+        return std::max(*grid_lines_rows, *grid_lines_columns);
+    }
+    bool pass() const { return periodicity_pass() && texture_energy_pass() && grid_lines_pass(); }
 };
 
 // From the metrics.json sections of tilejet and of the quilt baseline (see eval_command.cpp).

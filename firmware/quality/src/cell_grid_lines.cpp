@@ -1,0 +1,98 @@
+#include "tilejet/quality/cell_grid_lines.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "tilejet/synth/error.hpp"
+#include "tilejet/synth/internal/lab.hpp"
+#include "tilejet/synth/sampler.hpp"
+
+namespace tilejet::quality {
+
+namespace {
+
+// A span unrelated to the cell's: no small multiple of it comes within a few px of one of the
+// cell's over a plane of eight cells.
+constexpr double kUnrelatedSpan = 0.77;
+// Places of the fold taken together: a seam wanders a few px along a border.
+constexpr int kPlaceWidth = 5;
+
+// The size of the tone change across each gap between neighbours along `profile`'s axis,
+// averaged across it: index y is the gap between row y and y + 1.
+std::vector<double> tone_changes(const cv::Mat& blurred, bool between_rows) {
+    const int n = between_rows ? blurred.rows - 1 : blurred.cols - 1;
+    std::vector<double> change(size_t(std::max(0, n)), 0.0);
+    for (int y = 0; y + (between_rows ? 1 : 0) < blurred.rows; ++y) {
+        const cv::Vec3f* row = blurred.ptr<cv::Vec3f>(y);
+        const cv::Vec3f* below = between_rows ? blurred.ptr<cv::Vec3f>(y + 1) : nullptr;
+        for (int x = 0; x + (between_rows ? 0 : 1) < blurred.cols; ++x) {
+            const cv::Vec3f d = between_rows ? below[x] - row[x] : row[x + 1] - row[x];
+            change[size_t(between_rows ? y : x)] += std::sqrt(double(d.dot(d)));
+        }
+    }
+    return change;
+}
+
+// The strongest place of `change` folded by `period` (smoothed over kPlaceWidth places, the
+// fold wrapping round) against the median place, and where it lies.
+std::pair<double, int> strongest_place(const std::vector<double>& change, double period) {
+    const int places = std::max(1, int(std::lround(period)));
+    std::vector<double> sum(size_t(places), 0.0), count(size_t(places), 0.0);
+    for (size_t i = 0; i < change.size(); ++i) {
+        // The gap after pixel i lies at i + 1/2; its place in the period, rounded down.
+        const auto place = size_t(std::fmod(double(i) + 0.5, period) * places / period);
+        sum[std::min(place, size_t(places - 1))] += change[i];
+        count[std::min(place, size_t(places - 1))] += 1;
+    }
+    std::vector<double> fold(size_t(places), 0.0);
+    for (int p = 0; p < places; ++p) {
+        double s = 0, c = 0;
+        for (int d = -kPlaceWidth / 2; d <= kPlaceWidth / 2; ++d) {
+            const auto q = size_t(((p + d) % places + places) % places);
+            s += sum[q], c += count[q];
+        }
+        fold[size_t(p)] = c > 0 ? s / c : 0;
+    }
+    std::vector<double> sorted = fold;
+    std::nth_element(sorted.begin(), sorted.begin() + ptrdiff_t(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    const auto strongest = std::max_element(fold.begin(), fold.end());
+    return {median > 0 ? *strongest / median : 1.0, int(strongest - fold.begin())};
+}
+
+}  // namespace
+
+CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
+    if (cell.width < 2 || cell.height < 2 || plane.type() != CV_8UC3 ||
+        plane.cols < 2 * cell.width || plane.rows < 2 * cell.height)
+        throw synth::SynthError(
+            "cell grid lines need cells of 2 px or more and an 8-bit R,G,B plane of two cells "
+            "each way");
+    const double sigma = std::max(1.0, std::min(cell.width, cell.height) / 40.0);
+    cv::Mat blurred;
+    cv::GaussianBlur(synth::detail::to_lab(plane), blurred, {0, 0}, sigma, sigma,
+                     cv::BORDER_REFLECT);
+    CellGridLines lines;
+    const auto measure = [&](bool between_rows, int side, double& ratio, int& at) {
+        const std::vector<double> change = tone_changes(blurred, between_rows);
+        const auto [on_cells, place] = strongest_place(change, side);
+        const double own = strongest_place(change, side * kUnrelatedSpan).first;
+        ratio = own > 0 ? on_cells / own : on_cells;
+        at = place;
+    };
+    measure(true, cell.height, lines.rows, lines.row_at);
+    measure(false, cell.width, lines.columns, lines.column_at);
+    return lines;
+}
+
+cv::Mat cell_grid_lines_plane(const synth::TextureMap& map, uint64_t seed, int threads) {
+    constexpr int kMostCells = 16, kFewestCells = 4, kMostSide = 4096;
+    const int across = std::clamp(kMostSide / map.cell_width, kFewestCells, kMostCells);
+    const int down = std::clamp(kMostSide / map.cell_height, kFewestCells, kMostCells);
+    return synth::render_region(map, seed, {0, 0, across * map.cell_width, down * map.cell_height},
+                                threads);
+}
+
+}  // namespace tilejet::quality
