@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -110,6 +111,11 @@ size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
 void write_file(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 cv::Mat make_lattice_texture(Basis b, cv::Size size, uint32_t seed, bool ellipse) {

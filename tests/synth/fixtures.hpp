@@ -30,6 +30,8 @@ size_t pixels_unlike_sampler(const synth::TextureMap& map, uint64_t seed,
 double correlation_at(const cv::Mat& lab, cv::Point lag);
 
 void write_file(const std::filesystem::path& path, const std::string& bytes);
+// The whole of a file's bytes ("" when it cannot be read).
+std::string read_file(const std::filesystem::path& path);
 
 // A lattice's true (possibly fractional) translation vectors.
 struct Basis {

@@ -25,11 +25,6 @@ using tilejet::test::TempDir;
 
 namespace {
 
-std::string read_all(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 void write_all(const std::filesystem::path& p, const std::string& bytes) {
     std::ofstream(p, std::ios::binary) << bytes;
 }
@@ -271,7 +266,7 @@ std::string cli(const TempDir& dir, const std::string& args, int& status) {
     std::string command = TILEJET_CLI;
     command.append(" ").append(args).append(" > ").append((dir / "log").string()).append(" 2>&1");
     status = std::system(command.c_str());
-    return read_all(dir / "log");
+    return tilejet::test::read_file(dir / "log");
 }
 
 }  // namespace

@@ -18,11 +18,6 @@ using tilejet::test::TempDir;
 
 namespace {
 
-std::string read_all(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // The error message loading `bytes` from a file gives, or "" when it loads.
 std::string load_error(const TempDir& dir, const std::string& bytes) {
     const auto path = dir / "damaged.tjmap";
@@ -133,13 +128,14 @@ TEST_CASE("a texture map survives saving and loading unchanged", "[mapfile]") {
             0);
     // Saving is deterministic: the same map gives the same bytes.
     save_texture_map(back, dir / "again.tjmap");
-    REQUIRE(read_all(dir / "m.tjmap") == read_all(dir / "again.tjmap"));
+    REQUIRE(tilejet::test::read_file(dir / "m.tjmap") ==
+            tilejet::test::read_file(dir / "again.tjmap"));
 }
 
 TEST_CASE("damaged map files are refused with a message naming the file", "[mapfile]") {
     TempDir dir;
     save_texture_map(small_map(), dir / "good.tjmap");
-    const std::string good = read_all(dir / "good.tjmap");
+    const std::string good = tilejet::test::read_file(dir / "good.tjmap");
     const std::string name = (dir / "damaged.tjmap").string();
     REQUIRE(load_error(dir, good).empty());
 
