@@ -392,7 +392,12 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                            // copied to their places, and the brick wall's texture energy rose
                            // (1.20 times quilting's at map seed 3 against 1.10 with two), and
                            // its periodicity was 0.65-0.86 either way.
-                           !lattice});
+                           !lattice,
+                           // Not on a lattice either: a wall of fine synthetic courses read as
+                           // a two-way lattice with wandering frames (tests/synth/
+                           // test_lattice.cpp), and the corpus's brick wall kept its lines
+                           // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
+                           params.wandering_frames && !lattice});
         map.corner_colours = corner_colours, map.variants = set.variants();
         if (map.variants > 1)
             map.variant_rule = set.plain_in_four() ? TextureMap::VariantRule::plain_in_four

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <opencv2/imgproc.hpp>
 
+#include "cell_layout.hpp"
 #include "graph_cut.hpp"
 #include "offset_matching.hpp"
 #include "tilejet/synth/error.hpp"
@@ -15,7 +16,7 @@ namespace tilejet::synth::detail {
 
 namespace {
 
-enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream };
+enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream, kLayoutStream };
 
 // Block searches look at a random window of the source this many positions across, or twice the
 // block when that is more: in a window narrower than that, a 480 px block of a 1843 px source
@@ -41,7 +42,7 @@ constexpr double kUsageCost = 0.5;
 // (limestone, gravel, setts) against 1.13-1.29 with the cost. The very window (kRepeatReach) is
 // banned all the same (CellSet's constructor), a few dozen of thousands.
 constexpr double kSamePlaceCost = 1.0;
-// Fifths of the frame a cell keeps of its strips (kept_frame()).
+// Fifths of the frame a straight frame keeps of its strips (kept_depths()).
 constexpr int kKeptFrameFifths = 2;
 // Two images' blocks copy the same window to the same place when their sources lie within this
 // many px; an image may not (CellSet's constructor).
@@ -133,26 +134,27 @@ void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks, const cv::
             usage(r - area.tl()) += 1;
 }
 
-// Whether block `a` copies (nearly) the window `b` copied to the same place of its cell.
+// Whether blocks at `a` and `b` share a good part of their places in the cell: a quarter of the
+// smaller. Since images' joints lie at places of their own (cell_layout.hpp) their blocks seldom
+// share a rectangle exactly, and compared only then, images copied one window to one place.
+bool share_places(const cv::Rect& a, const cv::Rect& b) {
+    return 4 * int64_t((a & b).area()) >= int64_t(std::min(a.area(), b.area()));
+}
+
+// The window a block at `rect` would copy to show what block `b` copied at the very same places
+// of the cell.
+cv::Point same_place_window(const cv::Rect& rect, const Placement& b) {
+    return b.source - (b.at.tl() - rect.tl());
+}
+
+// Whether block `a` copies (nearly) what `b` copied to the same places of its cell.
 bool repeats(const Placement& a, const Placement& b) {
-    const cv::Point d = a.source - b.source;
-    return a.at == b.at && std::max(std::abs(d.x), std::abs(d.y)) < kRepeatReach;
+    const cv::Point d = a.source - same_place_window(a.at, b);
+    return share_places(a.at, b.at) && std::max(std::abs(d.x), std::abs(d.y)) < kRepeatReach;
 }
 
 void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
     count_uses(usage, blocks, cv::Rect({0, 0}, usage.size()));
-}
-
-// Starts of `count` blocks that cover [begin, end) with at least `overlap` between neighbours.
-std::vector<std::pair<int, int>> block_spans(int begin, int end, int block, int overlap) {
-    const int length = end - begin;
-    if (block >= length) return {{begin, end}};
-    const int count = std::max(1, (length - overlap + (block - overlap) - 1) / (block - overlap));
-    std::vector<std::pair<int, int>> spans;
-    for (int i = 0; i < count; ++i)
-        spans.push_back({begin + int(int64_t(length - overlap) * i / count),
-                         begin + int(int64_t(length - overlap) * (i + 1) / count) + overlap});
-    return spans;
 }
 
 // Half the width of a strip: the frame's share of each cell along an edge (why a tenth: the
@@ -175,9 +177,18 @@ int frame_width(cv::Size cell) {
 // the cell's corner shows, and where cuts are blended, to blend over `feather` px each side
 // (an exemplar enlarged 4 times: steps sharper than the stone's 0.41 % with a kept frame of 3
 // px, 0.13 % with all of it).
-int kept_frame(int w, int c, int feather) {
-    return std::max(
-        {2, w * kKeptFrameFifths / 5, std::min(w, c + 2), std::min(w, 2 * feather + 2)});
+// Since session 32 (CellSetParams::wandering) that depth wanders, image by image, between the
+// least the cut needs and the whole frame (cell_layout.hpp): kept at the same depth in every
+// image, every cell's cut ran in the same thin band and outlined it (the corpus's marble at map
+// seed 1, lines along the cell grid 1.31 against 1.15 wandering; slate 1.47 against 1.30).
+KeptDepths kept_depths(int w, int c, int feather, bool wandering) {
+    const int room = std::min(w, c + 2), blend = std::min(w, 2 * feather + 2);
+    if (!wandering) {
+        const int kept = std::max({2, w * kKeptFrameFifths / 5, room, blend});
+        return {kept, kept, kept, 0};
+    }
+    const int least = std::max(2, blend);
+    return {least, std::max(least, w), std::max(least, room), c + 2};
 }
 
 }  // namespace
@@ -219,7 +230,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     //    either side of an edge ran a few pixels apart and drew a line of strip along every
     //    cell border; with an eighth, the strips (the same at one edge in K^2) were so much of
     //    the plane that fine granite repeated with them (periodicity 1.9 against 0.9). Only
-    //    its outer pixel is locked; the cells' own blocks take its inner part (kept_frame())
+    //    its outer pixel is locked; the cells' own blocks take its inner part (kept_depths())
     //    and cut into the rest;
     //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
     //    round as squares, the same square at a third of all vertices.
@@ -519,10 +530,11 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     cv::Mat forbidden;
     if (canvas.banned)
         for (const Placement& p : *canvas.banned) {
-            if (p.at != rect) continue;
+            if (!share_places(p.at, rect)) continue;
             if (forbidden.empty()) forbidden = cv::Mat::zeros(source_lab.size(), CV_8U);
-            const cv::Rect around(p.source - cv::Point(kRepeatReach - 1, kRepeatReach - 1),
-                                  cv::Size(2 * kRepeatReach - 1, 2 * kRepeatReach - 1));
+            const cv::Rect around(
+                same_place_window(rect, p) - cv::Point(kRepeatReach - 1, kRepeatReach - 1),
+                cv::Size(2 * kRepeatReach - 1, 2 * kRepeatReach - 1));
             forbidden(around & cv::Rect({0, 0}, source_lab.size())).setTo(255);
         }
     if (canvas.avoid) {
@@ -639,18 +651,25 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
         }
 }
 
-// Quilts the unknown pixels of `area` in raster order with blocks of about `block` px.
+// Quilts the unknown pixels of `area` in raster order with blocks of about `block` px; with
+// `joints`, each row of blocks and the rows themselves meet at places of their own, each joint
+// moved by up to a third of a block's step (cell_layout.hpp).
 void quilt_area(Canvas& canvas, const cv::Rect& area, cv::Size block, int overlap,
                 const cv::Mat& source_rgb, const cv::Mat& source_lab,
-                const LatticeTranslations* lattice, cv::Point origin, Rng& rng) {
+                const LatticeTranslations* lattice, cv::Point origin, Rng& rng,
+                Rng* joints = nullptr) {
     // A thin strip gets blocks as tall as itself, overlapping by at most half a block.
     const int bh = std::min(block.height, area.height), bw = std::min(block.width, area.width);
-    const auto rows = block_spans(area.y, area.br().y, bh, std::min(overlap, bh / 2));
-    const auto cols = block_spans(area.x, area.br().x, bw, std::min(overlap, bw / 2));
-    for (const auto& [y0, y1] : rows)
-        for (const auto& [x0, x1] : cols)
+    const int row_overlap = std::min(overlap, bh / 2), column_overlap = std::min(overlap, bw / 2);
+    auto rows = block_spans(area.y, area.br().y, bh, row_overlap);
+    const auto cols = block_spans(area.x, area.br().x, bw, column_overlap);
+    if (joints) rows = jittered_spans(rows, (bh - row_overlap) / 3, *joints);
+    for (const auto& [y0, y1] : rows) {
+        for (const auto& [x0, x1] :
+             joints ? jittered_spans(cols, (bw - column_overlap) / 3, *joints) : cols)
             quilt_block(canvas, cv::Rect(x0, y0, x1 - x0, y1 - y0), overlap, source_rgb, source_lab,
                         lattice, origin, rng);
+    }
 }
 
 }  // namespace
@@ -788,8 +807,13 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
                 }
         }
     // The cell's own blocks take the frame's inner part, and cut into the rest.
-    const int kept = kept_frame(w_, c_, params_.seam_feather);
-    canvas.known(cv::Rect(kept, kept, cw_ - 2 * kept, ch_ - 2 * kept)).setTo(0);
+    const KeptDepths depths = kept_depths(w_, c_, params_.seam_feather, params_.wandering);
+    Rng layout(hash_combine(hash_combine(params_.seed, kLayoutStream), index));
+    const KeptFrame kept = params_.wandering ? wandering_kept_frame({cw_, ch_}, depths, layout)
+                                             : straight_kept_frame({cw_, ch_}, depths);
+    for (int y = 0; y < ch_; ++y)
+        for (int x = 0; x < cw_; ++x)
+            if (!kept.keeps({x, y}, {cw_, ch_})) canvas.known.at<uint8_t>(y, x) = 0;
     // The cell's outer pixels stay the strips': they meet the neighbours' across the edge. So
     // do its corners' quarters of the cores, chosen calm as they show at every vertex of their
     // colour: the blocks' cuts, run nearer the edge, took one of them for a block's white fleck.
@@ -812,7 +836,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     }
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
     quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
-               params_.lattice, {0, 0}, rng);
+               params_.lattice, {0, 0}, rng, params_.wandering ? &layout : nullptr);
     placed = std::move(canvas.placed);
     return canvas.rgb;
 }

@@ -61,6 +61,11 @@ struct CellSetParams {
     // With two variants, plain combinations (one colour at all four corners) get four
     // (TextureMap::VariantRule::plain_in_four), after the K^4 V others.
     bool plain_in_four = true;
+    // How deep a cell keeps its frame strips wanders along its edges, and its inside blocks meet
+    // at places of their own, image by image (cell_layout.hpp). False: straight frames and the
+    // same joints in every image, as sets were made before session 32, whose cells a wall
+    // showed as squares.
+    bool wandering = true;
 };
 
 class CellSet {

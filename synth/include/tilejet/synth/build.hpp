@@ -67,6 +67,11 @@ struct BuildParams {
     // Recorded in the map (BuildRecord): the print resolution the exemplar has already been
     // resampled to (resample_exemplar), and the resolution it was scanned at. 0: unknown.
     double dpi = 0, exemplar_dpi = 0;
+    // In a set, how deep each cell image keeps its frame strips wanders along its edges, and
+    // its inside blocks meet at places of their own (docs/design.md section 9). False: straight
+    // frames and the same joints in every image, as before session 32, whose cells a wall
+    // showed as squares; kept to measure against.
+    bool wandering_frames = true;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).
