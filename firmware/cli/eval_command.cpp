@@ -22,6 +22,7 @@
 #include "tilejet/quality/cell_place_energy.hpp"
 #include "tilejet/quality/cell_place_repeat.hpp"
 #include "tilejet/quality/cell_place_tails.hpp"
+#include "tilejet/quality/cell_stretch.hpp"
 #include "tilejet/quality/colour_match.hpp"
 #include "tilejet/quality/patch_coverage.hpp"
 #include "tilejet/quality/periodicity.hpp"
@@ -359,8 +360,8 @@ void run_eval(const EvalOptions& o) {
                                               {"band_px", tails.band}};
     page.gates.light_border = tails.border_light, page.gates.light_inside = tails.inside_light;
     progress.say("tilejet: lines along the cell grid");
-    const quality::CellGridLines lines =
-        quality::cell_grid_lines(quality::cell_grid_lines_plane(map, spec.seed, o.threads), cell);
+    const quality::CellGridLines lines = quality::cell_grid_lines(
+        quality::cell_stretch_plane(map, spec.seed, quality::kWideStretch, o.threads), cell);
     section("tilejet")["cell_grid_lines"] = {{"rows", lines.rows},
                                              {"columns", lines.columns},
                                              {"row_at", lines.row_at},

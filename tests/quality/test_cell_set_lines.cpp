@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "tilejet/quality/cell_grid_lines.hpp"
+#include "tilejet/quality/cell_stretch.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
 
@@ -24,8 +25,9 @@ TEST_CASE("a set's cells show fewer lines along the grid than straight frames dr
             p.wandering_frames = wander;
             const synth::TextureMap set = synth::build_texture_map(slate, p);
             REQUIRE(set.cell_images.size() == 36);
-            return quality::cell_grid_lines(quality::cell_grid_lines_plane(set, 7),
-                                            {set.cell_width, set.cell_height});
+            return quality::cell_grid_lines(
+                quality::cell_stretch_plane(set, 7, quality::kWideStretch),
+                {set.cell_width, set.cell_height});
         };
         const quality::CellGridLines s = lines_of(false), w = lines_of(true);
         UNSCOPED_INFO("map seed " << seed << ": straight frames rows " << s.rows << " at "

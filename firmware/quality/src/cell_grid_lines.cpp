@@ -7,7 +7,6 @@
 
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/internal/lab.hpp"
-#include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::quality {
 
@@ -85,14 +84,6 @@ CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
     measure(true, cell.height, lines.rows, lines.row_at);
     measure(false, cell.width, lines.columns, lines.column_at);
     return lines;
-}
-
-cv::Mat cell_grid_lines_plane(const synth::TextureMap& map, uint64_t seed, int threads) {
-    constexpr int kMostCells = 16, kFewestCells = 4, kMostSide = 4096;
-    const int across = std::clamp(kMostSide / map.cell_width, kFewestCells, kMostCells);
-    const int down = std::clamp(kMostSide / map.cell_height, kFewestCells, kMostCells);
-    return synth::render_region(map, seed, {0, 0, across * map.cell_width, down * map.cell_height},
-                                threads);
 }
 
 }  // namespace tilejet::quality

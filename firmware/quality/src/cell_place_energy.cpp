@@ -9,13 +9,6 @@
 
 namespace tilejet::quality {
 
-namespace {
-
-// The plane measured: up to this many cells a side within this many px, at least the fewest.
-constexpr int kEnergyMostCells = 8, kEnergyFewestCells = 2, kEnergyMostSide = 2048;
-
-}  // namespace
-
 CellPlaceEnergy cell_place_energy(const cv::Mat& plane, cv::Size cell, const TextureEnergy& energy,
                                   size_t samples, uint64_t seed) {
     if (cell.width < 1 || cell.height < 1 || plane.cols < kEnergyPatch || plane.rows < kEnergyPatch)
@@ -42,10 +35,7 @@ CellPlaceEnergy cell_place_energy(const cv::Mat& plane, cv::Size cell, const Tex
 }
 
 cv::Mat cell_place_plane(const synth::TextureMap& map, uint64_t seed, int threads) {
-    const int cw = map.cell_width, ch = map.cell_height;
-    const int across = std::clamp(kEnergyMostSide / cw, kEnergyFewestCells, kEnergyMostCells);
-    const int down = std::clamp(kEnergyMostSide / ch, kEnergyFewestCells, kEnergyMostCells);
-    return synth::render_region(map, seed, {0, 0, across * cw, down * ch}, threads);
+    return cell_stretch_plane(map, seed, kPlaceStretch, threads);
 }
 
 CellPlaceEnergy cell_place_energy(const synth::TextureMap& map, uint64_t seed,

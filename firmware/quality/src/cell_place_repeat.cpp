@@ -4,13 +4,13 @@
 #include <cstring>
 #include <vector>
 
+#include "tilejet/quality/cell_stretch.hpp"
 #include "tilejet/synth/sampler.hpp"
 
 namespace tilejet::quality {
 
 namespace {
 
-constexpr int kMostCells = 16, kFewestCells = 4, kMostSide = 4096;
 // Places looked at per cell side, at most: every place of cells up to this size, every
 // second, third... of larger ones, so that an 8192 px cell costs what a 256 px one does.
 constexpr int kMostPlaces = 256;
@@ -19,8 +19,7 @@ constexpr int kMostPlaces = 256;
 
 CellPlaceRepeat cell_place_repeat(const synth::TextureMap& map, uint64_t seed) {
     const int cw = map.cell_width, ch = map.cell_height;
-    const int across = std::clamp(kMostSide / cw, kFewestCells, kMostCells);
-    const int down = std::clamp(kMostSide / ch, kFewestCells, kMostCells);
+    const int across = cells_along(cw, kWideStretch), down = cells_along(ch, kWideStretch);
     const int step = (std::max(cw, ch) + kMostPlaces - 1) / kMostPlaces;
     std::vector<int> us, vs;
     for (int u = 0; u < cw; u += step)

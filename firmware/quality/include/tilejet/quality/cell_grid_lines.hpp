@@ -14,10 +14,7 @@
 // cell lines up from one span to the next) gives the wall's own unevenness, and the figure is
 // the one against the other: 1 where seams lie anywhere, more where they line up with the cells.
 
-#include <cstdint>
 #include <opencv2/core/mat.hpp>
-
-#include "tilejet/synth/texture_map.hpp"
 
 namespace tilejet::quality {
 
@@ -31,12 +28,8 @@ struct CellGridLines {
     double worst() const { return rows > columns ? rows : columns; }
 };
 
-// `plane`: CV_8UC3 R,G,B, its top-left pixel a cell corner, at least two cells each way.
+// `plane`: CV_8UC3 R,G,B, its top-left pixel a cell corner, at least two cells each way; eval
+// measures a map's kWideStretch (cell_stretch.hpp).
 CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell);
-
-// The stretch of `map`'s plane of job seed `seed` it is measured on: from a cell corner, 16
-// cells each way, or as many as fit in 4096 px but 4 at least. Over 8 cells each way a
-// plane without lines still measured up to 1.12.
-cv::Mat cell_grid_lines_plane(const synth::TextureMap& map, uint64_t seed, int threads = 0);
 
 }  // namespace tilejet::quality

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 
+#include "tilejet/quality/cell_stretch.hpp"
 #include "tilejet/quality/texture_energy.hpp"
 #include "tilejet/synth/texture_map.hpp"
 
@@ -27,8 +28,8 @@ struct CellPlaceEnergy {
 CellPlaceEnergy cell_place_energy(const cv::Mat& plane, cv::Size cell, const TextureEnergy& energy,
                                   size_t samples, uint64_t seed);
 
-// The plane of `map` for job `seed` that the measures by place in the cell look at: from the
-// origin, 8 x 8 cells or fewer within 2048 px a side (at least 2 x 2 cells), CV_8UC3 R,G,B.
+// The plane of `map` for job `seed` that the measures by place in the cell look at: its
+// kPlaceStretch (cell_stretch.hpp), CV_8UC3 R,G,B.
 cv::Mat cell_place_plane(const synth::TextureMap& map, uint64_t seed, int threads = 0);
 
 // The same on cell_place_plane().
