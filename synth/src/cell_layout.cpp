@@ -35,18 +35,7 @@ std::vector<int> wandering_depths(int length, const KeptDepths& d, Rng& rng) {
 
 }  // namespace
 
-KeptFrame straight_kept_frame(cv::Size cell, const KeptDepths& d) {
-    const auto edge = [&](int length) {
-        std::vector<int> depth(size_t(length), d.least);
-        for (int t = 0; t < length; ++t)
-            if (t < d.corner_reach || t >= length - d.corner_reach)
-                depth[size_t(t)] = std::max(d.least, d.corner_least);
-        return depth;
-    };
-    return {edge(cell.width), edge(cell.width), edge(cell.height), edge(cell.height)};
-}
-
-KeptFrame wandering_kept_frame(cv::Size cell, const KeptDepths& d, Rng& rng) {
+KeptFrame kept_frame(cv::Size cell, const KeptDepths& d, Rng& rng) {
     KeptFrame f;
     f.top = wandering_depths(cell.width, d, rng);
     f.bottom = wandering_depths(cell.width, d, rng);

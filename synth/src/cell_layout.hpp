@@ -35,14 +35,10 @@ struct KeptDepths {
     int least = 2, most = 2, corner_least = 2, corner_reach = 0;
 };
 
-// The same depth, `least`, everywhere (corner_least within corner_reach of the corners): the
-// straight frame of sets before session 32.
-KeptFrame straight_kept_frame(cv::Size cell, const KeptDepths& depths);
-
 // A depth that wanders between `least` and `most` along each edge: smooth steps between random
 // depths every sixth of the edge or so, drawn from `rng` (integers only, the same bytes on
-// every machine).
-KeptFrame wandering_kept_frame(cv::Size cell, const KeptDepths& depths, Rng& rng);
+// every machine). With `least` == `most`, the straight frame of sets before session 32.
+KeptFrame kept_frame(cv::Size cell, const KeptDepths& depths, Rng& rng);
 
 // Starts and ends of blocks that cover [begin, end) with at least `overlap` between neighbours,
 // each about `block` long.

@@ -809,8 +809,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     // The cell's own blocks take the frame's inner part, and cut into the rest.
     const KeptDepths depths = kept_depths(w_, c_, params_.seam_feather, params_.wandering);
     Rng layout(hash_combine(hash_combine(params_.seed, kLayoutStream), index));
-    const KeptFrame kept = params_.wandering ? wandering_kept_frame({cw_, ch_}, depths, layout)
-                                             : straight_kept_frame({cw_, ch_}, depths);
+    const KeptFrame kept = kept_frame({cw_, ch_}, depths, layout);
     for (int y = 0; y < ch_; ++y)
         for (int x = 0; x < cw_; ++x)
             if (!kept.keeps({x, y}, {cw_, ch_})) canvas.known.at<uint8_t>(y, x) = 0;

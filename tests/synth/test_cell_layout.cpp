@@ -15,7 +15,7 @@ TEST_CASE("a wandering kept frame stays within its depths and reaches across the
     const cv::Size cell(256, 200);
     const KeptDepths depths{2, 25, 10, 10};
     Rng rng(7);
-    const KeptFrame f = wandering_kept_frame(cell, depths, rng);
+    const KeptFrame f = kept_frame(cell, depths, rng);
     REQUIRE(f.top.size() == 256);
     REQUIRE(f.left.size() == 200);
     for (const auto* edge : {&f.top, &f.bottom, &f.left, &f.right}) {
@@ -40,15 +40,17 @@ TEST_CASE("a wandering kept frame stays within its depths and reaches across the
     }
     // The same draws give the same frame; other draws another.
     Rng again(7), other(8);
-    CHECK(wandering_kept_frame(cell, depths, again).top == f.top);
-    CHECK(wandering_kept_frame(cell, depths, other).top != f.top);
+    CHECK(kept_frame(cell, depths, again).top == f.top);
+    CHECK(kept_frame(cell, depths, other).top != f.top);
     // keeps(): within the depth at each place, not past it.
     CHECK(f.keeps({10, f.top[10] - 1}, cell));
     CHECK_FALSE(f.keeps({128, 100}, cell));
 }
 
-TEST_CASE("a straight kept frame is one depth, more near the corners", "[cell_layout]") {
-    const KeptFrame f = straight_kept_frame({128, 128}, {4, 4, 6, 6});
+TEST_CASE("a kept frame whose least is its most is one depth, more near the corners",
+          "[cell_layout]") {
+    Rng rng(3);
+    const KeptFrame f = kept_frame({128, 128}, {4, 4, 6, 6}, rng);
     CHECK(f.top[64] == 4);
     CHECK(f.left[3] == 6);
     CHECK(f.right[125] == 6);
