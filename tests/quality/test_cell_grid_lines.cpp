@@ -82,3 +82,57 @@ TEST_CASE("lines along the cell grid: a plane smaller than two cells, or not R,G
     CHECK_THROWS(quality::cell_grid_lines(cv::Mat(64, 64, CV_8UC1, cv::Scalar::all(0)), {32, 32}));
     CHECK_THROWS(quality::cell_grid_lines(cv::Mat(64, 64, CV_8UC3, cv::Scalar::all(0)), {1, 32}));
 }
+
+TEST_CASE("lines along the cell grid, the picture: red where the cells are outlined, not inside",
+          "[quality]") {
+    const int cell = 128, inset = 8;
+    const cv::Mat picture =
+        quality::cell_grid_lines_picture(outlined(grain(2048), cell, inset, 24), {cell, cell});
+    // Two panels of the cell enlarged to 256 px, 8 px apart.
+    REQUIRE(picture.type() == CV_8UC3);
+    REQUIRE(picture.rows == 256);
+    REQUIRE(picture.cols == 2 * 256 + 8);
+    const auto redness = [&](int x, int y) {
+        const cv::Vec3b p = picture.at<cv::Vec3b>(y, x);  // R, G, B
+        return int(p[0]) - int(p[2]);
+    };
+    // Left panel (changes between columns): the step at column inset - 1 is red at mid-height,
+    // the middle of the cell is not; right panel (between rows): the step at row inset - 1.
+    const int step = (inset - 1) * 2 + 1, middle = cell;
+    INFO("left panel: step " << redness(step, middle) << ", middle " << redness(middle, middle));
+    CHECK(redness(step, middle) > 100);
+    CHECK(redness(middle, middle) < redness(step, middle) - 100);
+    INFO("right panel: step " << redness(256 + 8 + middle, step) << ", middle "
+                              << redness(256 + 8 + middle, middle));
+    CHECK(redness(256 + 8 + middle, step) > 100);
+    CHECK(redness(256 + 8 + middle, middle) < redness(256 + 8 + middle, step) - 100);
+}
+
+TEST_CASE("lines along the cell grid, the picture: grain without a place shows no red band",
+          "[quality]") {
+    const int cell = 128;
+    const cv::Mat picture = quality::cell_grid_lines_picture(grain(2048), {cell, cell});
+    REQUIRE(picture.cols == 2 * 256 + 8);
+    // No column of the left panel, and no row of the right, red along most of its length.
+    int worst_column = 0, worst_row = 0;
+    for (int x = 0; x < 256; ++x) {
+        int red = 0;
+        for (int y = 0; y < 256; ++y) {
+            const cv::Vec3b p = picture.at<cv::Vec3b>(y, x);
+            red += p[0] > 200 && p[2] < 100;
+        }
+        worst_column = std::max(worst_column, red);
+    }
+    for (int y = 0; y < 256; ++y) {
+        int red = 0;
+        for (int x = 264; x < 520; ++x) {
+            const cv::Vec3b p = picture.at<cv::Vec3b>(y, x);
+            red += p[0] > 200 && p[2] < 100;
+        }
+        worst_row = std::max(worst_row, red);
+    }
+    INFO("reddest column " << worst_column << " px of 256, reddest row " << worst_row);
+    CHECK(worst_column < 128);
+    CHECK(worst_row < 128);
+    CHECK_THROWS(quality::cell_grid_lines_picture(cv::Mat(), {32, 32}));
+}

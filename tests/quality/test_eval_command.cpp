@@ -20,10 +20,11 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     REQUIRE(std::system(command.c_str()) == 0);
 
     const auto report = dir / "report";
-    for (const char* file : {"index.html", "exemplar.png", "tilejet-wall.png",
-                             "tilejet-repeats.png", "tilejet-seams.png", "canvas-wall.png",
-                             "cell-repeats.png", "quilt-seams.png", "wall3x3-tilejet.png",
-                             "wall3x3-canvas.png", "wall3x3-quilt.png", "walls-side-by-side.png"})
+    for (const char* file :
+         {"index.html", "exemplar.png", "tilejet-wall.png", "tilejet-repeats.png",
+          "tilejet-seams.png", "canvas-wall.png", "cell-repeats.png", "quilt-seams.png",
+          "wall3x3-tilejet.png", "wall3x3-canvas.png", "wall3x3-quilt.png",
+          "walls-side-by-side.png", "cell-lines.png"})
         CHECK(std::filesystem::exists(report / file));
 
     std::ifstream in(report / "metrics.json");
@@ -104,6 +105,9 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     REQUIRE(walls_at != std::string::npos);
     CHECK(gates_at < walls_at);
     CHECK(walls_at < page.find("<img src='exemplar.png'>"));
+    // Where the lines gate's tone changes lie in the cell, after the walls.
+    CHECK(page.find("<img src='cell-lines.png'>") > walls_at);
+    CHECK(page.find("<img src='cell-lines.png'>") != std::string::npos);
     CHECK(page.find("<img") > gates_at);
     std::ifstream log_in(dir / "log");
     const std::string log((std::istreambuf_iterator<char>(log_in)),

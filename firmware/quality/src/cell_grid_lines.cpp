@@ -61,9 +61,9 @@ std::pair<double, int> strongest_place(const std::vector<double>& change, double
     return {median > 0 ? *strongest / median : 1.0, int(strongest - fold.begin())};
 }
 
-}  // namespace
-
-CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
+// `plane` in CIELab, blurred to a fortieth of the cell: the tone a person sees from a few steps
+// back. Refuses what cell_grid_lines() cannot measure.
+cv::Mat blurred_tone(const cv::Mat& plane, cv::Size cell) {
     if (cell.width < 2 || cell.height < 2 || plane.type() != CV_8UC3 ||
         plane.cols < 2 * cell.width || plane.rows < 2 * cell.height)
         throw synth::SynthError(
@@ -73,6 +73,62 @@ CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
     cv::Mat blurred;
     cv::GaussianBlur(synth::detail::to_lab(plane), blurred, {0, 0}, sigma, sigma,
                      cv::BORDER_REFLECT);
+    return blurred;
+}
+
+// The size of the tone change between each pixel and its neighbour to the right (or below),
+// averaged over the whole cells of `blurred` at each place of the cell, over its median.
+cv::Mat folded_changes(const cv::Mat& blurred, cv::Size cell, bool between_rows) {
+    cv::Mat sum(cell, CV_64F, cv::Scalar(0)), count(cell, CV_64F, cv::Scalar(0));
+    const int rows = blurred.rows / cell.height * cell.height - (between_rows ? 1 : 0);
+    const int cols = blurred.cols / cell.width * cell.width - (between_rows ? 0 : 1);
+    for (int y = 0; y < rows; ++y) {
+        const cv::Vec3f* row = blurred.ptr<cv::Vec3f>(y);
+        const cv::Vec3f* next = between_rows ? blurred.ptr<cv::Vec3f>(y + 1) : row + 1;
+        double* s = sum.ptr<double>(y % cell.height);
+        double* c = count.ptr<double>(y % cell.height);
+        for (int x = 0; x < cols; ++x) {
+            const cv::Vec3f d = next[x] - row[x];
+            s[x % cell.width] += std::sqrt(double(d.dot(d)));
+            c[x % cell.width] += 1;
+        }
+    }
+    cv::Mat mean = sum / cv::max(count, 1.0);
+    std::vector<double> sorted(mean.begin<double>(), mean.end<double>());
+    std::nth_element(sorted.begin(), sorted.begin() + ptrdiff_t(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    return median > 0 ? cv::Mat(mean / median) : mean;
+}
+
+}  // namespace
+
+cv::Mat cell_grid_lines_picture(const cv::Mat& plane, cv::Size cell) {
+    const cv::Mat blurred = blurred_tone(plane, cell);
+    // Nearest-neighbour enlarged to 256 px or more a panel, so small cells can be seen.
+    const int scale = std::max(
+        1, (256 + std::min(cell.width, cell.height) - 1) / std::min(cell.width, cell.height));
+    constexpr int kGap = 8;
+    const cv::Size panel(cell.width * scale, cell.height * scale);
+    cv::Mat picture(panel.height, 2 * panel.width + kGap, CV_8UC3, cv::Scalar::all(255));
+    for (const bool between_rows : {false, true}) {
+        const cv::Mat ratio = folded_changes(blurred, cell, between_rows);
+        // Half the median (blue) to twice it (red) on a log scale, the median in the middle.
+        cv::Mat log_ratio, level;
+        cv::log(cv::max(ratio, 1e-6), log_ratio);
+        log_ratio.convertTo(level, CV_8U, 127.5 / std::log(2.0), 127.5);
+        cv::Mat bgr, rgb;
+        cv::applyColorMap(level, bgr, cv::COLORMAP_JET);
+        cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+        cv::resize(
+            rgb,
+            picture(cv::Rect(between_rows ? panel.width + kGap : 0, 0, panel.width, panel.height)),
+            panel, 0, 0, cv::INTER_NEAREST);
+    }
+    return picture;
+}
+
+CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
+    const cv::Mat blurred = blurred_tone(plane, cell);
     CellGridLines lines;
     const auto measure = [&](bool between_rows, int side, double& ratio, int& at) {
         const std::vector<double> change = tone_changes(blurred, between_rows);

@@ -257,6 +257,13 @@ void write_report_page(const ReportPage& page, const std::filesystem::path& dir)
               << page.side_by_side[k] << "</a>";
         h << ".</p><img src='walls-side-by-side.png'>";
     }
+    if (page.has_cell_lines_picture)
+        h << "<h2>Where the tilejet wall's tone changes, by place in the cell</h2><p>The tone "
+             "change of the lines gate at each pixel of the cell, averaged over every cell: "
+             "left between columns (vertical lines), right between rows (horizontal ones); "
+             "blue half the median or less, green the median, red twice it or more. Seams that "
+             "lie anywhere leave a green speckle; red bands along the borders are cells "
+             "outlined by their frame seams.</p><img src='cell-lines.png'>";
     h << "<div class='row'><div><h3>Exemplar</h3><img src='exemplar.png'></div>"
       << "<div><h3>Repeat curve</h3><p>Share of the wall covered by S&times;S windows that occur"
          " verbatim elsewhere on it (orange: the 5% line that sets repeat_scale).</p>"
