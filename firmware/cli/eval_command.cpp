@@ -360,11 +360,11 @@ void run_eval(const EvalOptions& o) {
                                               {"band_px", tails.band}};
     page.gates.light_border = tails.border_light, page.gates.light_inside = tails.inside_light;
     progress.say("tilejet: lines along the cell grid");
-    const cv::Mat wide_plane =
-        quality::cell_stretch_plane(map, spec.seed, quality::kWideStretch, o.threads);
-    const quality::CellGridLines lines = quality::cell_grid_lines(wide_plane, cell);
-    quality::write_rgb_png(quality::cell_grid_lines_picture(wide_plane, cell),
-                           dir / "cell-lines.png");
+    cv::Mat lines_picture;
+    const quality::CellGridLines lines = quality::cell_grid_lines(
+        quality::cell_stretch_plane(map, spec.seed, quality::kWideStretch, o.threads), cell,
+        &lines_picture);
+    quality::write_rgb_png(lines_picture, dir / "cell-lines.png");
     page.has_cell_lines_picture = true;
     section("tilejet")["cell_grid_lines"] = {{"rows", lines.rows},
                                              {"columns", lines.columns},

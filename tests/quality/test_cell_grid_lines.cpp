@@ -86,8 +86,8 @@ TEST_CASE("lines along the cell grid: a plane smaller than two cells, or not R,G
 TEST_CASE("lines along the cell grid, the picture: red where the cells are outlined, not inside",
           "[quality]") {
     const int cell = 128, inset = 8;
-    const cv::Mat picture =
-        quality::cell_grid_lines_picture(outlined(grain(2048), cell, inset, 24), {cell, cell});
+    cv::Mat picture;
+    quality::cell_grid_lines(outlined(grain(2048), cell, inset, 24), {cell, cell}, &picture);
     // Two panels of the cell enlarged to 256 px, 8 px apart.
     REQUIRE(picture.type() == CV_8UC3);
     REQUIRE(picture.rows == 256);
@@ -111,7 +111,8 @@ TEST_CASE("lines along the cell grid, the picture: red where the cells are outli
 TEST_CASE("lines along the cell grid, the picture: grain without a place shows no red band",
           "[quality]") {
     const int cell = 128;
-    const cv::Mat picture = quality::cell_grid_lines_picture(grain(2048), {cell, cell});
+    cv::Mat picture;
+    quality::cell_grid_lines(grain(2048), {cell, cell}, &picture);
     REQUIRE(picture.cols == 2 * 256 + 8);
     // No column of the left panel, and no row of the right, red along most of its length.
     const auto reddest = [&](bool rows) {
@@ -131,5 +132,5 @@ TEST_CASE("lines along the cell grid, the picture: grain without a place shows n
     INFO("reddest column " << worst_column << " px of 256, reddest row " << worst_row);
     CHECK(worst_column < 128);
     CHECK(worst_row < 128);
-    CHECK_THROWS(quality::cell_grid_lines_picture(cv::Mat(), {32, 32}));
+    CHECK_THROWS(quality::cell_grid_lines(cv::Mat(), {32, 32}, &picture));
 }

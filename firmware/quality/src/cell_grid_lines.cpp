@@ -18,6 +18,12 @@ constexpr double kUnrelatedSpan = 0.77;
 // Places of the fold taken together: a seam wanders a few px along a border.
 constexpr int kPlaceWidth = 5;
 
+// The size of the tone change from `a` to its neighbour `b` (ΔE76 of the blurred tone).
+double tone_step(const cv::Vec3f& a, const cv::Vec3f& b) {
+    const cv::Vec3f d = b - a;
+    return std::sqrt(double(d.dot(d)));
+}
+
 // The size of the tone change across each gap between neighbours along `profile`'s axis,
 // averaged across it: index y is the gap between row y and y + 1.
 std::vector<double> tone_changes(const cv::Mat& blurred, bool between_rows) {
@@ -27,8 +33,8 @@ std::vector<double> tone_changes(const cv::Mat& blurred, bool between_rows) {
         const cv::Vec3f* row = blurred.ptr<cv::Vec3f>(y);
         const cv::Vec3f* below = between_rows ? blurred.ptr<cv::Vec3f>(y + 1) : nullptr;
         for (int x = 0; x + (between_rows ? 0 : 1) < blurred.cols; ++x) {
-            const cv::Vec3f d = between_rows ? below[x] - row[x] : row[x + 1] - row[x];
-            change[size_t(between_rows ? y : x)] += std::sqrt(double(d.dot(d)));
+            change[size_t(between_rows ? y : x)] +=
+                tone_step(row[x], between_rows ? below[x] : row[x + 1]);
         }
     }
     return change;
@@ -88,8 +94,7 @@ cv::Mat folded_changes(const cv::Mat& blurred, cv::Size cell, bool between_rows)
         double* s = sum.ptr<double>(y % cell.height);
         double* c = count.ptr<double>(y % cell.height);
         for (int x = 0; x < cols; ++x) {
-            const cv::Vec3f d = next[x] - row[x];
-            s[x % cell.width] += std::sqrt(double(d.dot(d)));
+            s[x % cell.width] += tone_step(row[x], next[x]);
             c[x % cell.width] += 1;
         }
     }
@@ -100,10 +105,8 @@ cv::Mat folded_changes(const cv::Mat& blurred, cv::Size cell, bool between_rows)
     return median > 0 ? cv::Mat(mean / median) : mean;
 }
 
-}  // namespace
-
-cv::Mat cell_grid_lines_picture(const cv::Mat& plane, cv::Size cell) {
-    const cv::Mat blurred = blurred_tone(plane, cell);
+// cell_grid_lines()'s picture of `blurred` (blurred_tone()).
+cv::Mat lines_picture(const cv::Mat& blurred, cv::Size cell) {
     // Nearest-neighbour enlarged to 256 px or more a panel, so small cells can be seen.
     const int scale = std::max(
         1, (256 + std::min(cell.width, cell.height) - 1) / std::min(cell.width, cell.height));
@@ -127,8 +130,11 @@ cv::Mat cell_grid_lines_picture(const cv::Mat& plane, cv::Size cell) {
     return picture;
 }
 
-CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell) {
+}  // namespace
+
+CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell, cv::Mat* picture) {
     const cv::Mat blurred = blurred_tone(plane, cell);
+    if (picture) *picture = lines_picture(blurred, cell);
     CellGridLines lines;
     const auto measure = [&](bool between_rows, int side, double& ratio, int& at) {
         const std::vector<double> change = tone_changes(blurred, between_rows);

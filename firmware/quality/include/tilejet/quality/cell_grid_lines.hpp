@@ -30,14 +30,12 @@ struct CellGridLines {
 
 // `plane`: CV_8UC3 R,G,B, its top-left pixel a cell corner, at least two cells each way; eval
 // measures a map's kWideStretch (cell_stretch.hpp).
-CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell);
-
-// Where in the cell those lines lie, as a picture (CV_8UC3 R,G,B): the same blurred tone change,
-// between columns on the left (vertical lines) and between rows on the right (horizontal ones),
-// at each pixel of the cell averaged over every cell of `plane`, over the panel's median:
-// blue half of it or less, green the median, red twice it or more. A wall whose seams lie
-// anywhere is a speckle of green; frame seams draw red bands along the borders, joints that
-// every image shares draw lines inside. `plane` as for cell_grid_lines().
-cv::Mat cell_grid_lines_picture(const cv::Mat& plane, cv::Size cell);
+// With `picture`, also where in the cell those lines lie, drawn there (CV_8UC3 R,G,B): the same
+// blurred tone change, between columns on the left (vertical lines) and between rows on the
+// right (horizontal ones), at each pixel of the cell averaged over every cell of `plane`, over
+// the panel's median: blue half of it or less, green the median, red twice it or more. A wall
+// whose seams lie anywhere is a speckle of green; frame seams draw red bands along the borders,
+// joints that every image shares draw lines inside.
+CellGridLines cell_grid_lines(const cv::Mat& plane, cv::Size cell, cv::Mat* picture = nullptr);
 
 }  // namespace tilejet::quality

@@ -41,7 +41,7 @@ struct ReportPage {
     // factor they were scaled by; empty when there is none.
     std::vector<std::string> side_by_side;
     double side_by_side_scale = 1;
-    // cell-lines.png (cell_grid_lines_picture()): where in the cell the tilejet wall's tone
+    // cell-lines.png (cell_grid_lines() with a picture): where in the cell the tilejet wall's tone
     // changes, for the gate on lines along the cell grid.
     bool has_cell_lines_picture = false;
     LabStatistics exemplar_colour;
