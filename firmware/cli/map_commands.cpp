@@ -190,6 +190,10 @@ void add_map_commands(CLI::App& app) {
                   "for grain "
                   "under 8 px in cells up to 320 px, and for cells over 320 px from a source "
                   "their set copies less than once)");
+    b->add_flag("--smooth-steps", build->params.smooth_steps,
+                "spread the tone steps where each cell image's blocks cut into its frame strips "
+                "over its insides: no lines along the cell grid, but the copies no longer exact "
+                "(texture energy rises; README, session 34)");
     b->add_option(
         "--patches", build->params.patches,
         "patches kept per cell image (default 600 for one cell image; in a set none, 32 when "

@@ -397,7 +397,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                            // a two-way lattice with wandering frames (tests/synth/
                            // test_lattice.cpp), and the corpus's brick wall kept its lines
                            // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
-                           params.wandering_frames && !lattice});
+                           params.wandering_frames && !lattice, params.smooth_steps});
         map.corner_colours = corner_colours, map.variants = set.variants();
         if (map.variants > 1)
             map.variant_rule = set.plain_in_four() ? TextureMap::VariantRule::plain_in_four

@@ -5,6 +5,7 @@
 
 #include "cell_layout.hpp"
 #include "graph_cut.hpp"
+#include "layer_steps.hpp"
 #include "offset_matching.hpp"
 #include "tilejet/synth/error.hpp"
 #include "tilejet/synth/internal/corner_colours.hpp"
@@ -110,12 +111,17 @@ struct Canvas {
     bool wide_search = false;
     int feather = 0;                    // CellSetParams::seam_feather
     CutLevels cuts = CutLevels::Whole;  // CellSetParams::cuts
+    // What each pixel shows most of (CV_32S, an index into `layers`; -1 nothing yet): where the
+    // tone steps between copies lie (layer_steps.hpp).
+    cv::Mat layer_of;
+    std::vector<CanvasLayer> layers;
 
     explicit Canvas(cv::Size size)
         : rgb(size, CV_8UC3, cv::Scalar::all(0)),
           lab(size, CV_32FC3, cv::Scalar::all(0)),
           known(size, CV_8U, cv::Scalar::all(0)),
-          locked(size, CV_8U, cv::Scalar::all(0)) {}
+          locked(size, CV_8U, cv::Scalar::all(0)),
+          layer_of(size, CV_32S, cv::Scalar(-1)) {}
 
     void paste(const cv::Mat& piece_rgb, const cv::Mat& piece_lab, cv::Point at) {
         const cv::Rect r(at, piece_rgb.size());
@@ -638,11 +644,14 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
         if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
     }
     canvas.placed.push_back({rect, from.tl(), !matching || !fallback});
+    const int layer = int(canvas.layers.size());
+    canvas.layers.push_back({&source_rgb, from.tl() - rect.tl(), rect, 1});
     const cv::Mat weights = seam_weights(cut, pins, rect.size(), canvas.feather);
     for (int y = 0; y < rect.height; ++y)
         for (int x = 0; x < rect.width; ++x) {
             const int w = weights.at<int>(y, x);
             if (w == 0) continue;
+            if (2 * w >= kWhole) canvas.layer_of.at<int>(rect.y + y, rect.x + x) = layer;
             blend_in(canvas.rgb.at<cv::Vec3b>(rect.y + y, rect.x + x),
                      canvas.lab.at<cv::Vec3f>(rect.y + y, rect.x + x),
                      source_rgb.at<cv::Vec3b>(from.y + y, from.x + x),
@@ -771,10 +780,17 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     vertical_[tl + k * bl](cv::Rect(w_, w_, w_, ch_)).copyTo(v_rgb(cv::Rect(0, 0, w_, ch_)));
     vertical_[tr + k * br](cv::Rect(0, w_, w_, ch_)).copyTo(v_rgb(cv::Rect(cw_ - w_, 0, w_, ch_)));
     const cv::Mat h_lab = to_lab(h_rgb), v_lab = to_lab(v_rgb);
-    for (const cv::Rect band : {cv::Rect(0, 0, cw_, w_), cv::Rect(0, ch_ - w_, cw_, w_)})
+    // Layers 0-3: the top, bottom, left and right strip.
+    for (const cv::Rect band : {cv::Rect(0, 0, cw_, w_), cv::Rect(0, ch_ - w_, cw_, w_)}) {
         canvas.paste(h_rgb(band), h_lab(band), band.tl());
-    for (const cv::Rect band : {cv::Rect(0, 0, w_, ch_), cv::Rect(cw_ - w_, 0, w_, ch_)})
+        canvas.layer_of(band).setTo(int(canvas.layers.size()));
+        canvas.layers.push_back({&h_rgb, {0, 0}, band, 0});
+    }
+    for (const cv::Rect band : {cv::Rect(0, 0, w_, ch_), cv::Rect(cw_ - w_, 0, w_, ch_)}) {
         canvas.paste(v_rgb(band), v_lab(band), band.tl());
+        canvas.layer_of(band).setTo(int(canvas.layers.size()));
+        canvas.layers.push_back({&v_rgb, {0, 0}, band, 0});
+    }
     for (const bool right : {false, true})
         for (const bool bottom : {false, true}) {
             const cv::Rect corner(right ? cw_ - w_ : 0, bottom ? ch_ - w_ : 0, w_, w_);
@@ -804,6 +820,8 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
                     rgb = h_rgb.at<cv::Vec3b>(at), lab = h_lab.at<cv::Vec3f>(at);
                     blend_in(rgb, lab, v_rgb.at<cv::Vec3b>(at), v_lab.at<cv::Vec3f>(at),
                              weights.at<int>(y, x));
+                    const bool vertical = 2 * weights.at<int>(y, x) >= kWhole;
+                    canvas.layer_of.at<int>(at) = vertical ? 2 + int(right) : int(bottom);
                 }
         }
     // The cell's own blocks take the frame's inner part, and cut into the rest.
@@ -836,6 +854,8 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
     quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,
                params_.lattice, {0, 0}, rng, params_.wandering ? &layout : nullptr);
+    if (params_.smooth_steps)
+        remove_layer_steps(canvas.rgb, canvas.layer_of, canvas.layers, canvas.locked);
     placed = std::move(canvas.placed);
     return canvas.rgb;
 }

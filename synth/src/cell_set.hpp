@@ -66,6 +66,9 @@ struct CellSetParams {
     // same joints in every image, as sets were made before session 32, whose cells a wall
     // showed as squares.
     bool wandering = true;
+    // The tone steps where a cell image's blocks cut into its frame strips spread over its
+    // insides (layer_steps.hpp).
+    bool smooth_steps = false;
 };
 
 class CellSet {

@@ -72,6 +72,10 @@ struct BuildParams {
     // frames and the same joints in every image, as before session 32, whose cells a wall
     // showed as squares; kept to measure against.
     bool wandering_frames = true;
+    // In a set, the tone steps where each cell image's blocks cut into its frame strips are
+    // spread over its insides in the gradient domain: the lines along the cell grid go, and
+    // the copies' exactness with them (texture energy rises; README, session 34).
+    bool smooth_steps = false;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).
