@@ -201,4 +201,8 @@ cv::Vec3d mean_lab(const cv::Mat& rgb) {
     return {m[0], m[1], m[2]};
 }
 
+bool same_bytes(const cv::Mat& a, const cv::Mat& b) {
+    return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
 }  // namespace tilejet::test

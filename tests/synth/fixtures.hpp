@@ -53,4 +53,7 @@ cv::Mat make_course_texture(double pitch, cv::Size size, uint32_t seed);
 // one vector to the other.
 bool same_lattice(const synth::Lattice& found, Basis truth, double tol = 1.5);
 
+// Whether two images have the same size, type and bytes.
+bool same_bytes(const cv::Mat& a, const cv::Mat& b);
+
 }  // namespace tilejet::test

@@ -1,7 +1,6 @@
 // Region rendering against per-pixel sampling, and determinism over threads.
 
 #include <catch2/catch.hpp>
-#include <cstring>
 #include <opencv2/core.hpp>
 #include <random>
 
@@ -9,18 +8,8 @@
 #include "tilejet/synth/sampler.hpp"
 
 using namespace tilejet::synth;
+using tilejet::test::same_bytes;
 using tilejet::test::small_map;
-
-namespace {
-
-bool same_bytes(const cv::Mat& a, const cv::Mat& b) {
-    if (a.size() != b.size() || a.type() != b.type()) return false;
-    for (int r = 0; r < a.rows; ++r)
-        if (std::memcmp(a.ptr(r), b.ptr(r), size_t(a.cols) * a.elemSize()) != 0) return false;
-    return true;
-}
-
-}  // namespace
 
 TEST_CASE("region rendering gives the same bytes on 1, 2 and 4 threads", "[sampler]") {
     const TextureMap& map = small_map();

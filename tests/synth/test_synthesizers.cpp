@@ -15,6 +15,7 @@
 using namespace tilejet::synth;
 using tilejet::test::Basis;
 using tilejet::test::mean_lab;
+using tilejet::test::same_bytes;
 
 namespace {
 
@@ -33,10 +34,6 @@ const cv::Mat& marble_exemplar() {
 
 double delta_e76(const cv::Mat& a, const cv::Mat& b) {
     return cv::norm(mean_lab(a) - mean_lab(b));
-}
-
-bool same_bytes(const cv::Mat& a, const cv::Mat& b) {
-    return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
 
 const SynthMethod kMethods[] = {SynthMethod::Quilt, SynthMethod::Rsgf, SynthMethod::Enm};
