@@ -88,12 +88,18 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
         }
     const Cut cut = min_cut(canvas(cv::Rect(corner, cv::Size(side, side))),
                             src(cv::Rect(qx - R, qy - R, side, side)), pins, space.cuts);
+    return patch_from_cut(cut, {side, side}, {px - R, py - R}, {qx - R, qy - R},
+                          space.mean_seam_cost ? float(cut.mean_cost) : cut.max_cost);
+}
+
+std::optional<Patch> patch_from_cut(const Cut& cut, cv::Size window, cv::Point cell_at,
+                                    cv::Point source_at, float seam_cost) {
     const auto in = [&](int x, int y) {
-        return cut.take_new[size_t(y) * size_t(side) + size_t(x)];
+        return cut.take_new[size_t(y) * size_t(window.width) + size_t(x)];
     };
-    int x0 = side, y0 = side, x1 = -1, y1 = -1;
-    for (int y = 0; y < side; ++y)
-        for (int x = 0; x < side; ++x)
+    int x0 = window.width, y0 = window.height, x1 = -1, y1 = -1;
+    for (int y = 0; y < window.height; ++y)
+        for (int x = 0; x < window.width; ++x)
             if (in(x, y)) {
                 x0 = std::min(x0, x), x1 = std::max(x1, x);
                 y0 = std::min(y0, y), y1 = std::max(y1, y);
@@ -101,8 +107,8 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
     if (x1 < 0) return std::nullopt;
 
     Patch p;
-    p.x = px - R + x0, p.y = py - R + y0;
-    p.src_x = qx - R + x0, p.src_y = qy - R + y0;
+    p.x = cell_at.x + x0, p.y = cell_at.y + y0;
+    p.src_x = source_at.x + x0, p.src_y = source_at.y + y0;
     p.width = x1 - x0 + 1, p.height = y1 - y0 + 1;
     p.bits.assign(size_t(p.height) * size_t(p.row_bytes()), 0);
     for (int y = y0; y <= y1; ++y)
@@ -110,7 +116,7 @@ std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed) 
             if (in(x, y))
                 p.bits[size_t(y - y0) * size_t(p.row_bytes()) + size_t((x - x0) >> 3)] |=
                     uint8_t(1u << ((x - x0) & 7));
-    p.seam_cost = space.mean_seam_cost ? float(cut.mean_cost) : cut.max_cost;
+    p.seam_cost = seam_cost;
     p.derive_runs();
     return p;
 }

@@ -47,4 +47,10 @@ struct CandidateSpace {
 // mean_seam_cost. Returns nothing when the draw cannot fit (too close to the diamond's edge).
 std::optional<Patch> make_candidate(const CandidateSpace& space, uint64_t seed);
 
+// The patch a cut takes over a window of `window` px whose top-left pixel lies at `cell_at` in
+// cell coordinates and copies from `source_at`: its mask cropped to what the cut took. Nothing
+// when the cut took no pixel.
+std::optional<Patch> patch_from_cut(const Cut& cut, cv::Size window, cv::Point cell_at,
+                                    cv::Point source_at, float seam_cost);
+
 }  // namespace tilejet::synth::detail
