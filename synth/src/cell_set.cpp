@@ -299,11 +299,13 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     choose_corner_blocks(z2);
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
+    horizontal_blocks_.resize(kinds), vertical_blocks_.resize(kinds);
     cv::Mat usage(source_lab.size(), CV_32F, cv::Scalar(0));
     // One after another: each strip sees what the strips before it copied.
     for (size_t i = 0; i < 2 * kinds; ++i) {
         const uint32_t a = uint32_t(i % kinds % size_t(k_)), b = uint32_t(i % kinds / size_t(k_));
-        std::vector<Placement> blocks;
+        std::vector<Placement>& blocks =
+            i < kinds ? horizontal_blocks_[i] : vertical_blocks_[i - kinds];
         (i < kinds ? horizontal_[i] : vertical_[i - kinds]) =
             make_strip(i < kinds, a, b, usage, blocks);
         count_uses(usage, blocks);
@@ -858,6 +860,39 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
         remove_layer_steps(canvas.rgb, canvas.layer_of, canvas.layers, canvas.locked);
     placed = std::move(canvas.placed);
     return canvas.rgb;
+}
+
+std::optional<cv::Point> CellSet::strip_offset(size_t index, CellEdge edge) const {
+    if (params_.smooth_steps) return std::nullopt;
+    const size_t k = size_t(k_), combination = cell_image_key(uint32_t(k_), index).combination;
+    const size_t tl = combination % k, tr = combination / k % k, bl = combination / k / k % k,
+                 br = combination / k / k / k % k;
+    // The strip's band in the image, and where image pixels lie in strip coordinates
+    // (make_image(): each strip's vertex sits w px into it).
+    const bool horizontal = edge == CellEdge::top || edge == CellEdge::bottom;
+    const std::vector<Placement>& blocks =
+        horizontal ? horizontal_blocks_[edge == CellEdge::top ? tl + k * tr : bl + k * br]
+                   : vertical_blocks_[edge == CellEdge::left ? tl + k * bl : tr + k * br];
+    cv::Rect band;
+    cv::Point to_strip;
+    switch (edge) {
+        case CellEdge::top:
+            band = {0, 0, cw_, w_}, to_strip = {w_, w_};
+            break;
+        case CellEdge::bottom:
+            band = {0, ch_ - w_, cw_, w_}, to_strip = {w_, w_ - ch_};
+            break;
+        case CellEdge::left:
+            band = {0, 0, w_, ch_}, to_strip = {w_, w_};
+            break;
+        case CellEdge::right:
+            band = {cw_ - w_, 0, w_, ch_}, to_strip = {w_ - cw_, w_};
+            break;
+    }
+    const cv::Rect in_strip = band + to_strip;
+    for (const Placement& b : blocks)
+        if ((b.at & in_strip) == in_strip) return b.source - b.at.tl() + to_strip;
+    return std::nullopt;
 }
 
 cv::Mat CellSet::neighbourhood(size_t index) const {

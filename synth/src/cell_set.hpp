@@ -21,10 +21,12 @@
 
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <vector>
 
 #include "graph_cut.hpp"
 #include "lattice_alignment.hpp"
+#include "strip_continuation.hpp"
 
 namespace tilejet::synth::detail {
 
@@ -100,6 +102,12 @@ class CellSet {
     bool may_hold_patch(int x, int y) const { return x >= 0 && y >= 0 && x < cw_ && y < ch_; }
     // Blocks of the images that went in at random (Placement::matched): none, whatever the set.
     size_t unmatched_blocks() const { return unmatched_blocks_; }
+    // Where the strip along `edge` of image `index` copies from: image pixel p of the strip's
+    // band shows source pixel p + offset, and the source beyond it continues the strip
+    // (strip_continuation.hpp). Nothing when one window does not hold the whole strip (a
+    // source too small for it), or when the image's pixels were moved off their copies.
+    std::optional<cv::Point> strip_offset(size_t index, CellEdge edge) const;
+    int frame() const { return w_; }
 
   private:
     void choose_corner_blocks(const cv::Mat& source_z2);
@@ -113,6 +121,8 @@ class CellSet {
 
     const cv::Mat& source_rgb_;
     const cv::Mat& source_lab_;
+    // The blocks each strip was quilted from, as horizontal_ and vertical_.
+    std::vector<std::vector<Placement>> horizontal_blocks_, vertical_blocks_;
     CellSetParams params_;
     int k_, cw_, ch_, w_, c_, overlap_, strip_block_, strip_overlap_;
     int variants_ = 1;

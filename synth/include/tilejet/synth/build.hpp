@@ -76,6 +76,18 @@ struct BuildParams {
     // spread over its insides in the gradient domain: the lines along the cell grid go, and
     // the copies' exactness with them (texture energy rises; README, session 34).
     bool smooth_steps = false;
+    // In a set off a lattice and without other patches, frame patches kept per edge of each
+    // cell image: the strip along the edge continued into the cell from the source it was cut
+    // from, to a cut of its own (docs/design.md section 9, strip_continuation.hpp). Shown by
+    // hash cell by cell, they move the cut along each border to another depth in each cell,
+    // where every cell's own cut into its strips runs in one thin band and draws the grid.
+    // 0 (the default): none. With 4 on the corpus (session 35, README) the lines along the
+    // grid fell on grained and veined designs (wood 1.67 -> 1.25) and texture energy rose on
+    // fine ones (limestone 1.10 -> 1.21 times quilting's, over the gate; gravel 0.95 -> 1.11):
+    // a designer's choice per design, not a default.
+    int frame_patches = 0;
+    // Expected frame patches shown per cell (of up to 4 edges x frame_patches); 0: default (8).
+    double frame_active = 0;
 };
 
 // Reports build progress: a stage name and how far it is (done of total).

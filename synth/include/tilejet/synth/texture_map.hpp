@@ -33,7 +33,7 @@ struct Patch {
     int width = 0, height = 0;  // bounding box size
     int src_x = 0, src_y = 0;   // source pixel shown at the bounding box's top-left
     // Cost of the patch's cut, lower is better: its largest single edge cost, or in a cell set
-    // the mean edge cost along it (candidate_patch.hpp).
+    // the mean edge cost along it (candidate_patch.hpp, strip_continuation.hpp).
     float seam_cost = 0;
     std::vector<uint8_t> bits;       // row-major, one bit per pixel, each row padded to whole bytes
     std::vector<MaskRun> runs;       // derived from bits, sorted by row
