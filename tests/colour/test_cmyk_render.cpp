@@ -84,7 +84,7 @@ TEST_CASE("no pixel exceeds the total ink limit", "[colour]") {
     }
 }
 
-TEST_CASE("a converted map is the same plane in other inks; pipelines are told apart by key",
+TEST_CASE("a converted map is the same plane in other inks, pipelines are told apart by key",
           "[colour]") {
     const synth::TextureMap& map = test::small_map();
     const colour::CmykTransform a(settings(Intent::Perceptual, 300, false));

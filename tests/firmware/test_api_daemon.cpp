@@ -172,7 +172,7 @@ TEST_CASE("the daemon's event stream follows a job, and SIGTERM ends it promptly
     reader.join();
 }
 
-TEST_CASE("an engineer adds a design; an operator may not", "[api][daemon][designs]") {
+TEST_CASE("an engineer adds a design, an operator may not", "[api][daemon][designs]") {
     test::LinesimProcess line(line_options());
     test::TempDir dir;
     test::DaemonProcess daemon(line, dir.path());

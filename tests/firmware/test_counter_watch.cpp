@@ -40,7 +40,7 @@ void tile_past_eye(CounterWatch& w, std::chrono::nanoseconds when) {
 
 }  // namespace
 
-TEST_CASE("the first reading sets the count; later ones count the tiles between",
+TEST_CASE("the first reading sets the count, later ones count the tiles between",
           "[daemon][counter]") {
     CounterWatch w(line());
     CHECK_FALSE(w.known());
@@ -150,7 +150,7 @@ TEST_CASE("a counter stuck while the photo-eye sees tiles pass is a fault", "[da
     CHECK(v.fault->find("saw 5 tiles") != std::string::npos);
 }
 
-TEST_CASE("tiles counted take the photo-eye's lead back; glitches on the eye are not tiles",
+TEST_CASE("tiles counted take the photo-eye's lead back, glitches on the eye are not tiles",
           "[daemon][counter]") {
     CounterWatch w(line());
     w.judge(at(0, 0s), kAsked);

@@ -246,7 +246,7 @@ TEST_CASE("a job whose last tiles are still rendering when the line stops for th
     CHECK(daemon.job(id)["printed"].get<int>() == tiles);
 }
 
-TEST_CASE("SIGHUP reloads the print speed; a broken config is refused and the old one kept",
+TEST_CASE("SIGHUP reloads the print speed, a broken config is refused and the old one kept",
           "[daemon][line][reload]") {
     test::LinesimProcess line(line_options());
     test::TempDir dir;

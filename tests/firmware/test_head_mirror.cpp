@@ -96,7 +96,7 @@ TEST_CASE("after a resync the mirror is the strangers, the held tiles, then the 
     CHECK_FALSE(m.arrived().has_value());  // an arrival with nothing in the heads
 }
 
-TEST_CASE("heads that restart lose the oldest entries; doubt holds until a resync",
+TEST_CASE("heads that restart lose the oldest entries, doubt holds until a resync",
           "[daemon][mirror]") {
     HeadMirror m;
     m.known_empty();

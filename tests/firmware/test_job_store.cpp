@@ -117,7 +117,7 @@ TEST_CASE("a job's printed, spoiled and missed counters always equal its tile ro
     CHECK(store.job(a.id)->spoiled > 0);
 }
 
-TEST_CASE("a store of schema version 0 is migrated with its counts; a newer one is refused",
+TEST_CASE("a store of schema version 0 is migrated with its counts, a newer one is refused",
           "[jobs]") {
     test::TempDir dir;
     const auto path = dir.path() / "jobs.db";

@@ -10,7 +10,7 @@
 
 using namespace tilejet;
 
-TEST_CASE("one cell image repeats at every place no patch covers; a set's insides do not",
+TEST_CASE("one cell image repeats at every place no patch covers, a set's insides do not",
           "[quality][cell_set]") {
     // The demo design's one-image map as tilejet made it before cell sets (32 px cells).
     const synth::TextureMap one = synth::load_texture_map(

@@ -131,7 +131,7 @@ TEST_CASE("a set with frame patches renders as it samples, through its file",
     CHECK(build_texture_map(corpus_design("marble.png"), p).id == map.id);
 }
 
-TEST_CASE("a set has no frame patches unless asked for; bad counts are refused",
+TEST_CASE("a set has no frame patches unless asked for, bad counts are refused",
           "[frame_patches][cell_set]") {
     BuildParams defaults;
     REQUIRE(defaults.frame_patches == 0);
