@@ -240,7 +240,7 @@ TEST_CASE("a job prints its design at the design's dpi: another is refused, none
 }
 
 TEST_CASE(
-    "of two uploads of one new design name exactly one wins and the file holds its bytes; "
+    "of two uploads of one new design name exactly one wins and the file holds its bytes, "
     "a symlink planted in the folder is never written through",
     "[api][daemon][designs]") {
     test::LinesimProcess line(line_options());
