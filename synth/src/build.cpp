@@ -434,7 +434,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                                  : params.variants;
         // Frame patches off a lattice only: there a cell's courses and grout lines meet its
         // strips where the lattice puts them, and the brick wall was not measured with them.
-        const int frame_patches = lattice || params.smooth_steps ? 0 : params.frame_patches;
+        // (Smoothed images get none either: CellSet::strip_offset() knows their pixels moved.)
+        const int frame_patches = lattice ? 0 : params.frame_patches;
         const double frame_active =
             params.frame_active > 0 ? params.frame_active : kActiveFramePatches;
         const CellSet set(map.source, source_lab,
@@ -462,7 +463,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
             if (progress) progress("cell images", m, set.size());
             CellImage image;
             image.pixels = set.image(m).clone();
-            if (patches == 0) {  // empty A and B sets: the cell image alone
+            if (patches == 0) {  // no candidate patches: the image alone, or its frame patches
                 if (frame_patches > 0)
                     make_frame_patches(image, set, m, source_lab, cuts, frame_patches, frame_active,
                                        hash_combine(params.seed, m), threads);

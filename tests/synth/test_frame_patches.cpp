@@ -151,3 +151,17 @@ TEST_CASE("a set has no frame patches unless asked for, bad counts are refused",
     CHECK_THROWS_WITH(build_texture_map(corpus_design("marble.png"), p),
                       Catch::Contains("--frame-active"));
 }
+
+TEST_CASE("smoothed cell images get no frame patches: their frames no longer copy the source",
+          "[frame_patches][cell_set]") {
+    BuildParams p;
+    p.cell_size = 96;
+    p.frame_patches = 4;
+    p.smooth_steps = true;
+    const TextureMap map = build_texture_map(corpus_design("marble.png"), p);
+    REQUIRE(map.cell_images.size() > 1);
+    for (const CellImage& image : map.cell_images) {
+        CHECK(image.a.patches.empty());
+        CHECK(image.b.patches.empty());
+    }
+}
