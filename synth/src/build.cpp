@@ -57,9 +57,9 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
                          std::to_string(smaller) + " (the exemplar's smaller side)");
     if (p.patches != 0 && (p.patches < 2 || p.patches > 65535))
         throw SynthError("--patches " + std::to_string(p.patches) + " must be between 2 and 65535");
-    if (p.corner_colours < 1 || p.corner_colours > 4)
+    if (p.corner_colours < 0 || p.corner_colours > 4)
         throw SynthError("--corner-colours " + std::to_string(p.corner_colours) +
-                         " must be between 1 and 4");
+                         " must be between 1 and 4 (0: the default)");
     if (p.variants < 0 || p.variants > 2)
         throw SynthError("--variants " + std::to_string(p.variants) + " must be 1 or 2");
     if (p.corner_colours == 1 && p.variants > 1)
@@ -438,8 +438,11 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         const int frame_patches = lattice ? 0 : params.frame_patches;
         const double frame_active =
             params.frame_active > 0 ? params.frame_active : kActiveFramePatches;
+        const int kinds = corner_colours > 0 || lattice
+                              ? std::max(corner_colours, 2)
+                              : CellSet::default_corner_colours(cell_size, map.source.size());
         const CellSet set(map.source, source_lab,
-                          {cell_size, corner_colours, variants, params.seed, threads,
+                          {cell_size, kinds, variants, params.seed, threads,
                            lattice ? &*lattice : nullptr, feather, cuts,
                            // Not on a lattice: there the plain combinations' extra variants,
                            // made last, had few lattice windows left that no earlier image
@@ -452,7 +455,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                            // test_lattice.cpp), and the corpus's brick wall kept its lines
                            // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
                            params.wandering_frames && !lattice, params.smooth_steps});
-        map.corner_colours = corner_colours, map.variants = set.variants();
+        map.corner_colours = kinds, map.variants = set.variants();
         if (map.variants > 1)
             map.variant_rule = set.plain_in_four() ? TextureMap::VariantRule::plain_in_four
                                                    : TextureMap::VariantRule::hashed;

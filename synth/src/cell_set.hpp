@@ -81,6 +81,11 @@ class CellSet {
     // The smallest source a set of `cell` can be made from: an inside block (three quarters of
     // the cell), its strips' frame on both sides and a pixel of slack each way.
     static cv::Size smallest_source(cv::Size cell);
+    // Corner colours K by default for cells of `cell` from `source`: 2, but 3 where the K^4 = 81
+    // images of one variant still copy less than the source (slab scans from about 5800 px
+    // with 640 px cells): 16 images held a tenth of an 8192 px slab, and its wall missed most
+    // of the stone's variety.
+    static int default_corner_colours(cv::Size cell, cv::Size source);
 
     size_t size() const { return images_.size(); }
     int variants() const { return variants_; }
@@ -134,6 +139,10 @@ class CellSet {
     cv::Mat conspicuous_;  // large cells only
     // Cells over kLargeCell that copy their source more than once: conspicuous cost, wide search.
     bool large_ = false;
+    // The source made coarse_factor_ times smaller, for block searches coarse to fine (slab
+    // scans, kCoarseSide), or empty.
+    cv::Mat coarse_lab_;
+    int coarse_factor_ = 1;
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
     // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.

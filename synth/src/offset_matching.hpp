@@ -30,6 +30,14 @@ struct OffsetSearch {
     // first is the window at `area`'s top-left), or none. Given the area, a caller computes
     // its costs only there: over a slab scan's whole source they took most of a map build.
     std::function<void(const cv::Rect& area, cv::Mat& costs)> add_penalty;
+    // The source made `coarse_factor` times smaller (CV_32FC3, coarse_source()), or none.
+    // Given, a search that looks at a random window also looks at all of the coarse source
+    // and then, at full resolution, round its best places; those join the window's when they
+    // match far better (offset_matching.cpp). On an 8192 px slab a random window was 12 px of
+    // the photo it was enlarged from, and a block that had to continue a white vein found none
+    // there: its cut ran along the window's edge, a straight-sided white shard.
+    const cv::Mat* coarse = nullptr;
+    int coarse_factor = 1;
 };
 
 // Up to `count` allowed source positions of `old_lab`'s top-left pixel (CV_32FC3 window of what
@@ -38,5 +46,12 @@ struct OffsetSearch {
 // before it. Empty when no allowed position fits.
 std::vector<cv::Point> ranked_offsets(const OffsetSearch& search, const cv::Mat& old_lab,
                                       const cv::Mat& mask, Rng& rng, size_t count);
+
+// Whether `search` also looks at its source for a piece of that size coarse to fine: it has a
+// coarse source and looks at a random window, and the piece keeps enough pixels made smaller.
+bool searches_coarse_to_fine(const OffsetSearch& search, cv::Size piece);
+
+// `source_lab` made `factor` times smaller by area averaging: OffsetSearch::coarse.
+cv::Mat coarse_source(const cv::Mat& source_lab, int factor);
 
 }  // namespace tilejet::synth::detail

@@ -19,6 +19,7 @@
 #include "fixtures.hpp"
 #include "tilejet/colour/statistics.hpp"
 #include "tilejet/synth/build.hpp"
+#include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/internal/corner_colours.hpp"
 #include "tilejet/synth/internal/lab.hpp"
 #include "tilejet/synth/map_file.hpp"
@@ -941,4 +942,31 @@ TEST_CASE("with steps smoothed, a set is still seamless for every pair and its b
     }
     // The measure can fail: most images had a step to remove.
     CHECK(changed > plain.cell_images.size() / 2);
+}
+
+TEST_CASE("slab scans get three corner colours by default, everything smaller two", "[cell_set]") {
+    using tilejet::synth::detail::CellSet;
+    // 81 images of 640 px cells hold 33 Mpx: less than an 8192 px slab (67 Mpx), twice a 4096 px
+    // one.
+    CHECK(CellSet::default_corner_colours({640, 640}, {8192, 8192}) == 3);
+    CHECK(CellSet::default_corner_colours({640, 640}, {4096, 4096}) == 2);
+    CHECK(CellSet::default_corner_colours({640, 640}, {5760, 5760}) == 2);
+    CHECK(CellSet::default_corner_colours({640, 640}, {5800, 5800}) == 3);
+    CHECK(CellSet::default_corner_colours({256, 256}, {384, 384}) == 2);
+    CHECK(CellSet::default_corner_colours({480, 480}, {1843, 1843}) == 2);
+    // Built by default, a design of the corpus's size has two (as small_set(), asked for two).
+    BuildParams defaults;
+    CHECK(defaults.corner_colours == 0);
+    defaults.cell_size = 96;
+    const TextureMap map = build_texture_map(
+        load_exemplar(std::filesystem::path(TILEJET_SOURCE_DIR) / "tests/quality/corpus/gravel.png",
+                      {}),
+        defaults);
+    CHECK(map.corner_colours == 2);
+    for (const int bad : {-1, 5}) {
+        defaults.corner_colours = bad;
+        CHECK_THROWS_WITH(
+            build_texture_map(cv::Mat(256, 256, CV_8UC3, cv::Scalar::all(90)), defaults),
+            Catch::Contains("--corner-colours " + std::to_string(bad)));
+    }
 }

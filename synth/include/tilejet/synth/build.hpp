@@ -22,7 +22,10 @@ struct BuildParams {
     // 1.54), build in a quarter of the time and a fifth of the bytes; 81 images of 256 px took
     // 61 s for a 384 px exemplar and 15 MB. The hash still picks among 16 images per cell, with
     // their own patches over them, and no grid showed on walls of either.
-    int corner_colours = 2;
+    // 0: that default, but 3 where 81 images still copy less than the source (slab scans from
+    // about 5800 px, CellSet::default_corner_colours): an 8192 px slab's texture energy 1.14
+    // times quilting's against 2.40 with 16 images, which held a tenth of it (session 36).
+    int corner_colours = 0;
     // V cell images per combination of corner colours, K^4 V in all (with 2, plain combinations
     // get 4: K^4 2 + 2 K); with 2 a cell shows one by hash, but where a neighbour has its
     // combination the one that parts them (TextureMap::VariantRule): with one,
