@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "../child_process.hpp"
 #include "../temp_dir.hpp"
 #include "tilejet/drivers/config.hpp"
 #include "tilejet/drivers/sim/sim_control.hpp"
@@ -48,8 +49,7 @@ class LinesimProcess {
         child_.pid = fork();
         if (child_.pid == 0) {
             dup2(out[1], STDOUT_FILENO);
-            close(out[0]);
-            close(out[1]);
+            detach_from_test();
             execl(TILEJET_LINESIM, TILEJET_LINESIM, "--config", config_path_.c_str(), "--print-log",
                   print_log_.c_str(), static_cast<char*>(nullptr));
             _exit(127);

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../child_process.hpp"
 #include "../drivers/linesim_process.hpp"
 #include "tilejet/api/password.hpp"
 
@@ -99,8 +100,7 @@ class DaemonProcess {
             dup2(out[1], STDOUT_FILENO);
             const int log = ::open(log_path_.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
             dup2(log, STDERR_FILENO);
-            close(out[0]);
-            close(out[1]);
+            detach_from_test();
             execl(TILEJETD, TILEJETD, "--config", config_path_.c_str(),
                   static_cast<char*>(nullptr));
             _exit(127);
