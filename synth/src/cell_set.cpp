@@ -24,14 +24,13 @@ enum Stream : uint64_t { kCornerStream = 11, kStripStream, kImageStream, kLayout
 // (the demo design at 360 dpi) found no continuation of a vein it had to continue, and its cut
 // ran along the overlap's edge: white shards with straight sides.
 constexpr int kSearchWindow = 384;
-// Block searches of slab scans (sources that 81 images copy less than once, as
-// default_corner_colours() has it) also look at the whole source coarse to fine
-// (OffsetSearch::coarse), from a copy at most this large: an 8192 px slab's lines along the
-// cell grid 1.34 against 1.90, its white shards gone, texture energy 1.16 times quilting's
-// against 1.14. Not on smaller sources: a 4096 px slab's texture energy rose from 1.18 to 1.34
-// (blocks drew on the source's calm places), the demo design's at 360 dpi (large cells, whose
-// wide windows hold most of their source) from 1.40 to 1.65. Not on a lattice, whose few
-// allowed offsets a coarse place may miss.
+// Block searches of slab scans (slab_scan(): sources that 81 images copy less than once) also
+// look at the whole source coarse to fine (OffsetSearch::coarse), from a copy at most this
+// large: an 8192 px slab's lines along the cell grid 1.34 against 1.90, its white shards gone,
+// texture energy 1.16 times quilting's against 1.14. Not on smaller sources: a 4096 px slab's
+// texture energy rose from 1.18 to 1.34 (blocks drew on the source's calm places), the demo
+// design's at 360 dpi (large cells, whose wide windows hold most of their source) from 1.40
+// to 1.65. Not on a lattice, whose few allowed offsets a coarse place may miss.
 constexpr int kCoarseSide = 1024;
 // Each block takes the best seam of this many best-matching windows.
 constexpr size_t kCutCandidates = 6;
@@ -224,9 +223,9 @@ cv::Size CellSet::smallest_source(cv::Size cell) {
             std::max(8, cell.height * 3 / 4) + 2 * w + 2};
 }
 
-int CellSet::default_corner_colours(cv::Size cell, cv::Size source) {
+bool CellSet::slab_scan(cv::Size cell, cv::Size source) {
     constexpr double kThreeColourImages = 81;
-    return kThreeColourImages * cell.area() < double(source.area()) ? 3 : 2;
+    return kThreeColourImages * cell.area() < double(source.area());
 }
 
 CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const CellSetParams& params)
@@ -314,7 +313,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
     }
     if (!params.lattice && !large_ && std::max(source_lab.cols, source_lab.rows) > kCoarseSide &&
-        default_corner_colours(params.cell, source_lab.size()) == 3) {
+        slab_scan(params.cell, source_lab.size())) {
         coarse_factor_ =
             (std::max(source_lab.cols, source_lab.rows) + kCoarseSide - 1) / kCoarseSide;
         coarse_lab_ = coarse_source(source_lab, coarse_factor_);

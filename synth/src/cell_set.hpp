@@ -81,11 +81,15 @@ class CellSet {
     // The smallest source a set of `cell` can be made from: an inside block (three quarters of
     // the cell), its strips' frame on both sides and a pixel of slack each way.
     static cv::Size smallest_source(cv::Size cell);
-    // Corner colours K by default for cells of `cell` from `source`: 2, but 3 where the K^4 = 81
-    // images of one variant still copy less than the source (slab scans from about 5800 px
-    // with 640 px cells): 16 images held a tenth of an 8192 px slab, and its wall missed most
-    // of the stone's variety.
-    static int default_corner_colours(cv::Size cell, cv::Size source);
+    // Whether a set of `cell` from `source` is a slab scan's: the 81 images of three corner
+    // colours (one variant) still copy less than the source (from about 5800 px with 640 px
+    // cells).
+    static bool slab_scan(cv::Size cell, cv::Size source);
+    // Corner colours K by default: 2, but 3 for slab scans: 16 images held a tenth of an
+    // 8192 px slab, and its wall missed most of the stone's variety.
+    static int default_corner_colours(cv::Size cell, cv::Size source) {
+        return slab_scan(cell, source) ? 3 : 2;
+    }
 
     size_t size() const { return images_.size(); }
     int variants() const { return variants_; }

@@ -33,6 +33,7 @@ void rank_area(const OffsetSearch& search, const cv::Rect& area, const cv::Mat& 
     cv::Mat costs;  // (W - w + 1) x (H - h + 1), CV_32F
     cv::matchTemplate(search.source_lab(area), old_lab, costs, cv::TM_SQDIFF, mask);
     if (search.add_penalty) search.add_penalty(area, costs);
+    ranked.reserve(ranked.size() + costs.total());
     for (int y = 0; y < costs.rows; ++y)
         for (int x = 0; x < costs.cols; ++x) {
             const cv::Point at = cv::Point(x, y) + area.tl();
@@ -80,11 +81,7 @@ Ranked coarse_to_fine(const OffsetSearch& search, const cv::Mat& old_lab, const 
     const int f = search.coarse_factor;
     const int across = search.source_lab.cols - old_lab.cols + 1,
               down = search.source_lab.rows - old_lab.rows + 1;
-    const cv::Size small(old_lab.cols / f, old_lab.rows / f);
-    const cv::Rect whole_small({0, 0}, small * f);
-    cv::Mat old_small, mask_small;
-    cv::resize(old_lab(whole_small), old_small, small, 0, 0, cv::INTER_AREA);
-    cv::resize(mask(whole_small), mask_small, small, 0, 0, cv::INTER_AREA);
+    const cv::Mat old_small = coarse_source(old_lab, f), mask_small = coarse_source(mask, f);
     Ranked places, fine;
     rank_area(OffsetSearch{*search.coarse, {}, 1, 0, {}, nullptr, 1},
               cv::Rect({0, 0}, search.coarse->size()), old_small, mask_small, places);
@@ -105,11 +102,10 @@ Ranked coarse_to_fine(const OffsetSearch& search, const cv::Mat& old_lab, const 
 
 }  // namespace
 
-cv::Mat coarse_source(const cv::Mat& source_lab, int factor) {
-    const cv::Size small(source_lab.cols / factor, source_lab.rows / factor);
+cv::Mat coarse_source(const cv::Mat& image, int factor) {
+    const cv::Size small(image.cols / factor, image.rows / factor);
     cv::Mat coarse;
-    cv::resize(source_lab(cv::Rect(0, 0, small.width * factor, small.height * factor)), coarse,
-               small, 0, 0, cv::INTER_AREA);
+    cv::resize(image(cv::Rect({0, 0}, small * factor)), coarse, small, 0, 0, cv::INTER_AREA);
     return coarse;
 }
 

@@ -51,7 +51,8 @@ std::vector<cv::Point> ranked_offsets(const OffsetSearch& search, const cv::Mat&
 // coarse source and looks at a random window, and the piece keeps enough pixels made smaller.
 bool searches_coarse_to_fine(const OffsetSearch& search, cv::Size piece);
 
-// `source_lab` made `factor` times smaller by area averaging: OffsetSearch::coarse.
-cv::Mat coarse_source(const cv::Mat& source_lab, int factor);
+// `image` made `factor` times smaller by area averaging (what is left over at its right and
+// bottom edges dropped): OffsetSearch::coarse, and the pieces and masks matched against it.
+cv::Mat coarse_source(const cv::Mat& image, int factor);
 
 }  // namespace tilejet::synth::detail
