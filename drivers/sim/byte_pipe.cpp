@@ -2,14 +2,14 @@
 
 #include <fcntl.h>
 #include <poll.h>
-#include <pthread.h>
-#include <signal.h>
 #include <sys/uio.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
+
+#include "sigpipe_held.hpp"
 
 namespace tilejet::drivers::sim {
 
@@ -18,33 +18,6 @@ namespace {
 // Fewer, larger handovers; the default pipe holds 64 KB. Above /proc/sys/fs/pipe-max-size (1 MB
 // by default) the kernel refuses, and the default size still works, only slower.
 constexpr int kPipeBytes = 1 << 20;
-
-// vmsplice into a pipe whose reader is gone raises SIGPIPE, which would end a process that has
-// not ignored it (tilejetd does; a test binary may not). Blocked while writing, and a SIGPIPE
-// this write raised is taken back, so the failure is an EPIPE error like any other.
-class SigpipeHeld {
-  public:
-    SigpipeHeld() {
-        sigemptyset(&sigpipe_);
-        sigaddset(&sigpipe_, SIGPIPE);
-        sigset_t pending;
-        sigpending(&pending);
-        was_pending_ = sigismember(&pending, SIGPIPE) == 1;
-        pthread_sigmask(SIG_BLOCK, &sigpipe_, &old_);
-    }
-    ~SigpipeHeld() {
-        if (raised_ && !was_pending_) {
-            const timespec now{0, 0};
-            sigtimedwait(&sigpipe_, nullptr, &now);
-        }
-        pthread_sigmask(SIG_SETMASK, &old_, nullptr);
-    }
-    void raised() { raised_ = true; }
-
-  private:
-    sigset_t sigpipe_{}, old_{};
-    bool was_pending_ = false, raised_ = false;
-};
 
 }  // namespace
 
@@ -70,7 +43,7 @@ void BytePipe::close_read_end() {
 void BytePipe::write_all(std::span<const std::uint8_t> bytes, std::chrono::milliseconds timeout,
                          const std::string& what) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    SigpipeHeld sigpipe;
+    SigpipeHeld sigpipe;  // vmsplice into a pipe whose reader is gone raises SIGPIPE
     while (!bytes.empty()) {
         iovec v{const_cast<std::uint8_t*>(bytes.data()), bytes.size()};
         const ssize_t n = ::vmsplice(write_, &v, 1, SPLICE_F_NONBLOCK);

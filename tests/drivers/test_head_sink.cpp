@@ -1,7 +1,6 @@
 // The sim head sink: separations in, the print log out, missed tiles never printed late.
 
 #include <openssl/evp.h>
-#include <signal.h>
 #include <sys/mman.h>
 #include <sys/socket.h>
 #include <sys/un.h>
@@ -12,6 +11,7 @@
 #include <thread>
 
 #include "linesim_process.hpp"
+#include "sigpipe_held.hpp"
 #include "tilejet/drivers/factory.hpp"
 #include "tilejet/drivers/sim/sim_head_sink.hpp"
 
@@ -254,26 +254,6 @@ TEST_CASE("PIPE without a file descriptor is refused", "[drivers][heads][sim][fa
     CHECK(client.read_line().starts_with("ERROR PIPE"));
 }
 
-namespace {
-
-// write() with SIGPIPE held back for this thread, and any it raised taken off again.
-ssize_t write_without_sigpipe(int fd, const std::string& bytes) {
-    sigset_t pipe_signal, old;
-    sigemptyset(&pipe_signal);
-    sigaddset(&pipe_signal, SIGPIPE);
-    pthread_sigmask(SIG_BLOCK, &pipe_signal, &old);
-    const ssize_t n = ::write(fd, bytes.data(), bytes.size());
-    const int error = errno;
-    const timespec now{0, 0};
-    while (sigtimedwait(&pipe_signal, nullptr, &now) == SIGPIPE) {
-    }
-    pthread_sigmask(SIG_SETMASK, &old, nullptr);
-    errno = error;
-    return n;
-}
-
-}  // namespace
-
 TEST_CASE("a piped tile whose sender hung up before the heads had it all is not queued",
           "[drivers][heads][sim][fault]") {
     test::LinesimProcess sim;
@@ -288,8 +268,15 @@ TEST_CASE("a piped tile whose sender hung up before the heads had it all is not 
     // The sender gave up: from here on its pages may hold anything. The rest still arrives,
     // unless the heads have closed the pipe already (then the write fails with EPIPE: this
     // process keeps SIGPIPE's default, which killed it here once, and the test with it).
-    const ssize_t rest = write_without_sigpipe(feed, std::string(2000, 'y'));
-    REQUIRE((rest == 2000 || (rest < 0 && errno == EPIPE)));
+    ssize_t rest = 0;
+    int error = 0;
+    {
+        drivers::sim::SigpipeHeld held;
+        rest = ::write(feed, std::string(2000, 'y').data(), 2000);
+        error = errno;
+        if (rest < 0 && error == EPIPE) held.raised();
+    }
+    REQUIRE((rest == 2000 || (rest < 0 && error == EPIPE)));
     ::close(feed);
     auto heads = drivers::make_head_sink(sim.config());
     CHECK(heads->held(1s) == 0);
