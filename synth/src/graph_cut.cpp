@@ -171,12 +171,13 @@ Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pi
         levels == CutLevels::Whole ? cut_whole(diff, w, h, pins) : cut_levels(diff, w, h, pins);
     for (const uint8_t t : cut.take_new)
         cut.taken += t;
-    double sum = 0;
+    double sum = 0, square = 0;
     size_t edges = 0;
     auto on_edge = [&](size_t a, size_t b) {
         if (cut.take_new[a] == cut.take_new[b]) return;
         const float c = weight(a, b);
         sum += c, ++edges, cut.max_cost = std::max(cut.max_cost, c);
+        square += double(c) * c;
     };
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -186,6 +187,7 @@ Cut min_cut(const cv::Mat& old_lab, const cv::Mat& new_lab, const std::vector<Pi
         }
     cut.total_cost = sum;
     cut.mean_cost = edges ? sum / double(edges) : 0;
+    cut.mean_square_cost = edges ? square / double(edges) : 0;
     return cut;
 }
 

@@ -19,8 +19,11 @@ struct Cut {
     std::vector<uint8_t> take_new;  // per window pixel, row-major: 1 where the new image shows
     double total_cost = 0;          // the cut's cost: what max-flow minimises
     double mean_cost = 0;           // mean edge cost along the cut
-    float max_cost = 0;             // largest single edge cost along the cut
-    size_t taken = 0;               // pixels that show the new image
+    // Mean squared edge cost: a short stretch of great cost (a vein cut off square) weighs
+    // more than in mean_cost, where a long calm rest of the cut dilutes it.
+    double mean_square_cost = 0;
+    float max_cost = 0;  // largest single edge cost along the cut
+    size_t taken = 0;    // pixels that show the new image
 };
 
 // Windows at least this many pixels on their shorter side are cut coarse to fine (graph_cut.cpp).

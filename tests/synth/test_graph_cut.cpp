@@ -103,3 +103,27 @@ TEST_CASE("a small window is cut exactly", "[graph_cut]") {
     const Cut cut = min_cut(old_lab, new_lab, pins, CutLevels::Auto);
     CHECK(cut.take_new == exact.take_new);
 }
+
+// Two cuts of the same mean cost: one along a uniform difference, one whose cost lies all in a
+// quarter of its length (a vein cut off square). The squared mean tells them apart, by the
+// factor the construction gives: costs 20 everywhere against 80 on a quarter, 0 elsewhere.
+TEST_CASE("a cut's mean squared cost weighs a short costly stretch more than its mean does",
+          "[graph_cut]") {
+    const cv::Size size(16, 64);
+    // Every pixel pinned: the cut runs between columns 7 and 8, 64 edges.
+    std::vector<Pin> pins(size_t(size.area()));
+    for (int y = 0; y < size.height; ++y)
+        for (int x = 0; x < size.width; ++x)
+            pins[size_t(y * size.width + x)] = x < size.width / 2 ? Pin::Old : Pin::New;
+    const cv::Mat old_lab(size, CV_32FC3, cv::Scalar(50, 0, 0));
+    // Each edge costs the difference at both its pixels: 10 + 10, or 40 + 40 over a quarter.
+    const cv::Mat uniform(size, CV_32FC3, cv::Scalar(60, 0, 0));
+    cv::Mat stretch = old_lab.clone();
+    stretch.rowRange(0, size.height / 4).setTo(cv::Scalar(90, 0, 0));
+    const Cut even = min_cut(old_lab, uniform, pins, CutLevels::Whole);
+    const Cut square = min_cut(old_lab, stretch, pins, CutLevels::Whole);
+    CHECK(even.mean_cost == Approx(20).epsilon(1e-3));
+    CHECK(square.mean_cost == Approx(20).epsilon(1e-3));
+    CHECK(even.mean_square_cost == Approx(400).epsilon(1e-3));
+    CHECK(square.mean_square_cost == Approx(0.25 * 80 * 80).epsilon(1e-3));
+}
