@@ -65,17 +65,17 @@ constexpr int kRepeatReach = 4;
 // 1.02; gravel's texture energy 1.31 against 1.18). Lattices (grout lines) are left out.
 constexpr double kConspicuousZ2 = 2.0;
 // Copying a conspicuous pixel costs this many times its squared excess (in units of the source's
-// variance), once for the copy and once more for every copy other images and strips made before.
-// The first copy is charged too: whatever a cell image shows recurs at the same place of one
-// cell in 2K^4, and a strip's at a quarter of all cell edges (K = 2): the demo design's white
-// vein, copied once into one image, showed as the same white comma three times in 5120 px.
-// The graph-cut patches, each shown far more rarely, are where such features belong.
+// variance) for every copy other images and strips made before, and a strip pays for its first
+// copy too: a strip's features recur at a quarter of all cell edges (K = 2), a cell image's at
+// one cell in 36. Until session 36 images paid for the first copy as well, and searched up to
+// four windows for a match with nothing conspicuous, which kept the demo design's white veins out
+// of the set (the demo's white vein, copied into one image, had shown as the same white comma
+// three times in 5120 px): its wall was calmer and darker than the stone (light tail 0.2 % of the
+// wall against quilting's 1.4 %, texture energy 1.40 times quilting's, completeness the most of
+// it). With an image's first copy free and cuts chosen by their mean squared cost
+// (quilt_block()), and 3 px blends (build.cpp), 1.07 and 1.18 at map seeds 1 and 2, the veins
+// back in a few images each (README, session 37).
 constexpr double kConspicuousCost = 1.0;
-// A block search on a large cell looks at one random window of the source; where that window
-// lay on the demo design's vein, all its best matches held the vein, and the vein went whole
-// into a cell image at any cost. Up to this many windows are searched until one offers a
-// candidate with nothing conspicuous.
-constexpr int kConspicuousWindows = 4;
 // Cells larger than this (those of exemplars of 1024 px and more) get the cost of conspicuous
 // pixels and the wider block search, when the set must copy its source more than once. Where it
 // need not (an 8192 px slab: its set covers a tenth of it) features do not recur, and the wide
@@ -115,6 +115,9 @@ struct Canvas {
     const cv::Mat* conspicuous = nullptr;
     // The uses conspicuous pixels are charged for, when not `usage`: those of every variant.
     const cv::Mat* conspicuous_uses = nullptr;
+    // Whether a canvas's first copy of a conspicuous pixel is charged (strips: see
+    // kConspicuousCost).
+    bool conspicuous_first_charged = true;
     // Large cells: the block search looks at twice the block (kSearchWindow).
     bool wide_search = false;
     // The source made smaller, for searches coarse to fine (OffsetSearch::coarse), or none.
@@ -530,7 +533,8 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             // they pushed blocks off the vein's continuation, and cuts ran straight across it).
             const cv::Mat& others =
                 canvas.conspicuous_uses ? *canvas.conspicuous_uses : *canvas.usage;
-            cost = per_use * used + (*canvas.conspicuous)(area).mul(others(area) + 1);
+            cost = per_use * used + (*canvas.conspicuous)(area).mul(
+                                        others(area) + (canvas.conspicuous_first_charged ? 1 : 0));
             scale = 1;
         }
         cv::Mat sums;
@@ -617,23 +621,9 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
             add_same_place_cost(area, penalty);
             costs += penalty;
         };
-    // How much of what is conspicuous in the source a window at `corner` would copy.
-    const auto conspicuous_in = [&](cv::Point corner) {
-        return canvas.conspicuous ? cv::sum((*canvas.conspicuous)(cv::Rect(corner, rect.size())))[0]
-                                  : 0.0;
-    };
     std::vector<cv::Point> candidates;
-    std::vector<double> conspicuous;  // conspicuous_in of each candidate
     if (cv::countNonZero(mask) > 0)
-        for (int tries = canvas.conspicuous ? kConspicuousWindows : 1; tries > 0; --tries) {
-            const auto more = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
-            bool calm = false;
-            for (const cv::Point c : more) {
-                candidates.push_back(c), conspicuous.push_back(conspicuous_in(c));
-                calm |= conspicuous.back() == 0;
-            }
-            if (calm) break;
-        }
+        candidates = ranked_offsets(search, canvas.lab(rect), mask, rng, kCutCandidates);
     const bool matching = cv::countNonZero(mask) > 0, fallback = candidates.empty();
     if (candidates.empty()) {  // nothing to match yet (or no lattice offset fits): anywhere
         cv::Point corner(rng.range(0, source_lab.cols - rect.width),
@@ -643,7 +633,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 rect.tl() + origin + lattice->nearest(cv::Point2d(corner - rect.tl() - origin));
         corner.x = std::clamp(corner.x, 0, source_lab.cols - rect.width);
         corner.y = std::clamp(corner.y, 0, source_lab.rows - rect.height);
-        candidates.push_back(corner), conspicuous.push_back(conspicuous_in(corner));
+        candidates.push_back(corner);
     }
     std::vector<Pin> pins(size_t(rect.area()));
     for (int y = 0; y < rect.height; ++y)
@@ -658,16 +648,20 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                 pin = near.at<uint8_t>(y, x) ? Pin::Free : Pin::Old;
         }
     // The best-matching windows, judged by the seam their cut would leave (what shows, and what
-    // texture energy counts), not by the overlap's mean difference alone; of those with nothing
-    // conspicuous, else of the least conspicuous (a better seam is no reason to repeat a vein).
-    const double least_conspicuous = std::ranges::min(conspicuous);
+    // texture energy counts), not by the overlap's mean difference alone. Where conspicuous
+    // features may come in (large cells), by its mean squared cost: a vein cut off square
+    // along a block's edge is a short stretch of great cost, which the mean over the rest of
+    // a long calm cut hid (the demo design at 360 dpi showed white rectangles with straight
+    // sides, where with the squared cost a few white shards remain).
+    const auto cost_of = [&](const Cut& c) {
+        return canvas.conspicuous ? c.mean_square_cost : c.mean_cost;
+    };
     Cut cut;
     cv::Rect from;
-    for (size_t i = 0; i < candidates.size(); ++i) {
-        if (conspicuous[i] > least_conspicuous) continue;
-        const cv::Rect window(candidates[i], rect.size());
+    for (const cv::Point candidate : candidates) {
+        const cv::Rect window(candidate, rect.size());
         Cut c = min_cut(canvas.lab(rect), source_lab(window), pins, canvas.cuts);
-        if (from.empty() || c.mean_cost < cut.mean_cost) cut = std::move(c), from = window;
+        if (from.empty() || cost_of(c) < cost_of(cut)) cut = std::move(c), from = window;
     }
     canvas.placed.push_back({rect, from.tl(), !matching || !fallback});
     const int layer = int(canvas.layers.size());
@@ -876,6 +870,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
     if (large_) {
         canvas.conspicuous = &conspicuous_;
         canvas.conspicuous_uses = &all_uses;
+        canvas.conspicuous_first_charged = false;
         canvas.wide_search = true;
     }
     if (!coarse_lab_.empty()) canvas.coarse = &coarse_lab_, canvas.coarse_factor = coarse_factor_;

@@ -730,12 +730,16 @@ TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
         Catch::Contains("crafted.tjmap") && Catch::Contains("of a cell set leaves its cell"));
 }
 
-TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_set][slab][heavy]") {
+TEST_CASE("a source's one conspicuous feature shows in one cell image at most and in no frame",
+          "[cell_set][slab][heavy]") {
     // Calm grey grain with one white disc: what a set copies of the disc recurs wherever its
     // cell image or strip does, at the same place of one cell in 16 (a strip's: a quarter of
     // all edges, K = 2). Large cells only (cell_set.cpp, kLargeCell): the 320 px and smaller
-    // cells of exemplars under 1024 px are made as before. Made the old way, this set showed
-    // the disc in 4 images; charged for every copy but the first, in 1 or 2.
+    // cells of exemplars under 1024 px are made as before. Made with no cost on conspicuous
+    // pixels, this set showed the disc in 4 images; charged for every copy but an image's
+    // first, in 1 or 2 (a block's cut may leave a piece of it to the next). Strips pay for their
+    // first copy too: none holds any of it. (Until session 36 images paid for their first copy
+    // as well and none showed the disc: the demo design lost its white veins that way.)
     const int cell = 336, side = 840;
     cv::Mat noise = grey_grain(side, 5);
     cv::GaussianBlur(noise, noise, {0, 0}, 1.5);
@@ -762,7 +766,7 @@ TEST_CASE("a source's one conspicuous feature shows in no cell image", "[cell_se
     }
     INFO("images showing the disc: " << images_with_disc << ", frame pixels " << frame_pixels);
     CHECK(frame_pixels == 0);
-    CHECK(images_with_disc == 0);
+    CHECK(images_with_disc <= 2);
 }
 
 TEST_CASE("the corner cores of a small-celled set hold no fleck", "[cell_set][heavy]") {
