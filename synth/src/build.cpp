@@ -46,6 +46,18 @@ constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
 // to 1.22-1.26.
 constexpr int kFrameCandidates = 32;
 constexpr double kActiveFramePatches = 8;
+// How wide the cuts of an enlarged design are blended (session 37): over half the enlargement f,
+// at least kLeastSeamFeather px, at most f. A blend mixes two grains over its width, a faint
+// double image that no part of the design shows: blended over the whole enlargement (7 px on
+// the demo design at 360 dpi) the cuts made half of what set the wall's texture coherence apart
+// from quilting's (0.165 against 0.080; 0.121 blended over 3 px, the same map otherwise), and
+// at full size 3 px drew no line along them. But on a slab enlarged 16 times, 3 px turned the
+// cuts into straight steps of tone, squares at wall scale.
+constexpr int kLeastSeamFeather = 3;
+int seam_feather(double enlargement) {
+    if (enlargement < 2) return 0;  // cut hard: a design at its own resolution is sharp
+    return std::min(int(enlargement), std::max(kLeastSeamFeather, int(enlargement / 2)));
+}
 
 // Stream ids keep the random draws of each build stage independent of one another.
 enum Stream : uint64_t { kCellStream = 1, kSourceStream, kCandidateStream, kSplitStream };
@@ -416,10 +428,10 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         map.cell_images.push_back(std::move(image));
     } else {
         if (progress) progress("cell set", 0, 1);
-        // An exemplar enlarged for the print resolution: cuts blended over the enlargement.
+        // An exemplar enlarged for the print resolution: cuts blended (seam_feather()).
         const double enlargement =
             params.dpi > 0 && params.exemplar_dpi > 0 ? params.dpi / params.exemplar_dpi : 1;
-        const int feather = enlargement >= 2 ? int(enlargement) : 0;
+        const int feather = seam_feather(enlargement);
         // Its large cuts coarse to fine: a soft source loses nothing at half resolution. Sharp
         // ones are cut exactly: on the corpus, at their own resolution, coarse-to-fine cuts
         // from 192 px (cell blocks of 256 px cells, their largest patches) cost 1 to 7 % of
