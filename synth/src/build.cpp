@@ -46,17 +46,23 @@ constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
 // to 1.22-1.26.
 constexpr int kFrameCandidates = 32;
 constexpr double kActiveFramePatches = 8;
-// How wide the cuts of an enlarged design are blended (session 37): over half the enlargement f,
-// at least kLeastSeamFeather px, at most f. A blend mixes two grains over its width, a faint
-// double image that no part of the design shows: blended over the whole enlargement (7 px on
-// the demo design at 360 dpi) the cuts made half of what set the wall's texture coherence apart
-// from quilting's (0.165 against 0.080; 0.121 blended over 3 px, the same map otherwise), and
-// at full size 3 px drew no line along them. But on a slab enlarged 16 times, 3 px turned the
-// cuts into straight steps of tone, squares at wall scale.
-constexpr int kLeastSeamFeather = 3;
+// How wide the cuts of an enlarged design are blended (session 37): over the enlargement f, but
+// at most kNarrowSeamFeather px below kWideBlendsFrom. A blend mixes two grains over its width, a
+// faint double image that no part of the design shows: blended over the whole enlargement (7 px
+// on the demo design at 360 dpi) the cuts made half of what set the wall's texture coherence
+// apart from quilting's (0.165 against 0.080; 0.121 blended over 3 px, the same map otherwise),
+// and at full size 3 px drew no line along them; a 2048 px slab (8 times) measured 1.02 times
+// quilting's texture energy over 3 px, 1.12 over 4 and 1.37 over 8 (coherence 0.116, 0.119,
+// 0.164). Slabs enlarged 16 and 32 times (the demo stone resampled) are another matter: over
+// 3 px the 4096 px slab's cuts showed as straight steps of tone, squares at wall scale (texture
+// energy 1.22 against 1.18 over 16 px); over half the enlargement the 8192 px slab kept few of
+// its light parts (1.68 against 1.16 over 32 px, one map seed). Those keep their blends.
+constexpr int kNarrowSeamFeather = 3;
+constexpr double kWideBlendsFrom = 16;
 int seam_feather(double enlargement) {
     if (enlargement < 2) return 0;  // cut hard: a design at its own resolution is sharp
-    return std::min(int(enlargement), std::max(kLeastSeamFeather, int(enlargement / 2)));
+    if (enlargement >= kWideBlendsFrom) return int(enlargement);
+    return std::min(int(enlargement), kNarrowSeamFeather);
 }
 
 // Stream ids keep the random draws of each build stage independent of one another.
