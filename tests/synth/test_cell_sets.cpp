@@ -730,7 +730,7 @@ TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
         Catch::Contains("crafted.tjmap") && Catch::Contains("of a cell set leaves its cell"));
 }
 
-TEST_CASE("a source's one conspicuous feature shows in one cell image at most and in no frame",
+TEST_CASE("a source's one conspicuous feature shows in two cell images at most and in no frame",
           "[cell_set][slab][heavy]") {
     // Calm grey grain with one white disc: what a set copies of the disc recurs wherever its
     // cell image or strip does, at the same place of one cell in 16 (a strip's: a quarter of
