@@ -730,7 +730,7 @@ TEST_CASE("a set whose patch reaches over its cell's edge is refused on load",
         Catch::Contains("crafted.tjmap") && Catch::Contains("of a cell set leaves its cell"));
 }
 
-TEST_CASE("a source's one conspicuous feature shows in two cell images at most and in no frame",
+TEST_CASE("a source's one conspicuous feature shows in two cell images at most and in no strip",
           "[cell_set][slab][heavy]") {
     // Calm grey grain with one white disc: what a set copies of the disc recurs wherever its
     // cell image or strip does, at the same place of one cell in 16 (a strip's: a quarter of
@@ -754,8 +754,12 @@ TEST_CASE("a source's one conspicuous feature shows in two cell images at most a
     const TextureMap map = build_texture_map(noise, p);
     REQUIRE(map.cell_images.size() == 16);
 
+    // A strip shows in the frames of several images (K = 2: each at the top of four and the
+    // bottom of four), so the disc in a strip whites the frames of several; an image's own
+    // block may reach into the inner part of its frame (how deep a cell keeps its strips
+    // wanders, cell_layout.hpp), and that shows in that image only.
     const int frame = cell / 10;  // cell_set.cpp: the frame is a tenth of the cell
-    int images_with_disc = 0, frame_pixels = 0;
+    int images_with_disc = 0, frames_with_disc = 0, frame_pixels = 0;
     for (const CellImage& image : map.cell_images) {
         cv::Mat white;
         cv::inRange(image.pixels, cv::Scalar::all(200), cv::Scalar::all(255), white);
@@ -763,9 +767,11 @@ TEST_CASE("a source's one conspicuous feature shows in two cell images at most a
         cv::Mat inner = white.clone();
         inner(cv::Rect(frame, frame, cell - 2 * frame, cell - 2 * frame)).setTo(0);
         frame_pixels += cv::countNonZero(inner);
+        frames_with_disc += cv::countNonZero(inner) > 0;
     }
-    INFO("images showing the disc: " << images_with_disc << ", frame pixels " << frame_pixels);
-    CHECK(frame_pixels == 0);
+    INFO("images showing the disc: " << images_with_disc << ", frames showing it "
+                                     << frames_with_disc << " (" << frame_pixels << " px)");
+    CHECK(frames_with_disc <= 1);
     CHECK(images_with_disc <= 2);
 }
 
