@@ -42,11 +42,14 @@ namespace tilejet::cli {
 
 namespace {
 
-// Periodicity looks at the top-left corner of the laid wall, this size or four cells across when
+// Periodicity looks at the top-left corner of the laid wall, this size or eight cells across when
 // that is more (lags reach half the window, so a window of 1024 px saw no repeat of a 640 px
-// cell), at most the wall: an FFT of a few seconds at most.
+// cell), at most the wall: an FFT of a few seconds at most. Four cells until session 38: lags
+// under two cells, and neighbouring cells differ by construction, so a set's repeats two and
+// three cells apart went unseen (a 256 px granite crop 0.75 with four cells, 2.2 with eight,
+// its peak two cells across and one down; the corpus's slate 1.23 three across and two down).
 constexpr int kPeriodicityWindow = 1024;
-constexpr int kPeriodicityCells = 4;
+constexpr int kPeriodicityCells = 8;
 constexpr size_t kEnergySamples = 30000;
 // px of wall the exemplar is looked for in: four times the exemplar's area, at least 1 Mpx and
 // at most four times what the index holds whole (so a large exemplar's stretch is indexed on
