@@ -86,10 +86,20 @@ class CellSet {
     // cells).
     static bool slab_scan(cv::Size cell, cv::Size source);
     // Corner colours K by default: 2, but 3 for slab scans: 16 images held a tenth of an
-    // 8192 px slab, and its wall missed most of the stone's variety.
+    // 8192 px slab, and its wall missed most of the stone's variety. More for sources smaller
+    // than the 256 px the cells' grain rule starts from (small pattern files), whose cells are
+    // as large as the source: every image there is made from the same few windows, and with
+    // 36 images granite crops of 64, 128 and 192 px repeated at lags of two and three cells
+    // (periodicity 2.37, 2.41, 2.75 times quilting's). Three colours (168 images, a strip at
+    // a ninth of the edges): 1.52, 0.89, 1.45; four (520) on 64 px: 1.10, 2.9 MB in 5 s (on
+    // 192 px 0.93, but 31 MB in 63 s: so three from 128 px). Not yet enough on every small
+    // source (192 px: 1.45; README, session 38).
     static int default_corner_colours(cv::Size cell, cv::Size source) {
-        return slab_scan(cell, source) ? 3 : 2;
+        if (slab_scan(cell, source)) return 3;
+        const int side = std::min(source.width, source.height);
+        return side < kSmallSource / 2 ? 4 : side < kSmallSource ? 3 : 2;
     }
+    static constexpr int kSmallSource = 256;
 
     size_t size() const { return images_.size(); }
     int variants() const { return variants_; }

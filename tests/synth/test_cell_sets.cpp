@@ -205,6 +205,7 @@ TEST_CASE("a set from a source shorter than its strips is seamless for every pai
     // 64 px cells from a 70 px exemplar: each strip (76 px) is quilted from two blocks, and
     // the cells copy the exemplar itself, not a quilt of it.
     BuildParams p;
+    p.corner_colours = 2;  // a source this small gets four by default: 520 images to check
     p.cell_size = 64;
     p.patches = 4;
     p.candidates = 8;
@@ -495,6 +496,7 @@ TEST_CASE("the two variants of a small source's set differ, the first as one var
     // and cells side by side showed one image, as with one variant.
     const cv::Mat noise = grey_grain(160, 7);
     BuildParams p;
+    p.corner_colours = 2;  // the counts below; a source this small gets three by default
     p.patches = 2;
     p.candidates = 2;
     p.cell_size = 40;
@@ -954,7 +956,9 @@ TEST_CASE("with steps smoothed, a set is still seamless for every pair and its b
     CHECK(changed > plain.cell_images.size() / 2);
 }
 
-TEST_CASE("slab scans get three corner colours by default, everything smaller two", "[cell_set]") {
+TEST_CASE(
+    "slab scans get three corner colours by default, pattern files three or four, the rest two",
+    "[cell_set]") {
     using tilejet::synth::detail::CellSet;
     // 81 images of 640 px cells hold 33 Mpx: less than an 8192 px slab (67 Mpx), twice a 4096 px
     // one.
@@ -964,6 +968,10 @@ TEST_CASE("slab scans get three corner colours by default, everything smaller tw
     CHECK(CellSet::default_corner_colours({640, 640}, {5800, 5800}) == 3);
     CHECK(CellSet::default_corner_colours({256, 256}, {384, 384}) == 2);
     CHECK(CellSet::default_corner_colours({480, 480}, {1843, 1843}) == 2);
+    // Sources under 256 px (pattern files): 3, and 4 under 128 px.
+    CHECK(CellSet::default_corner_colours({256, 256}, {256, 256}) == 2);
+    CHECK(CellSet::default_corner_colours({192, 192}, {192, 192}) == 3);
+    CHECK(CellSet::default_corner_colours({100, 75}, {100, 75}) == 4);
     // Built by default, a design of the corpus's size has two (as small_set(), asked for two).
     BuildParams defaults;
     CHECK(defaults.corner_colours == 0);

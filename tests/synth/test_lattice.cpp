@@ -111,6 +111,9 @@ TEST_CASE("on a lattice plain cells keep two variants", "[lattice][build][heavy]
     // energy with them (build.cpp). Off a lattice they are made (test_cell_sets.cpp).
     const cv::Mat exemplar = make_lattice_texture({{40, 0}, {20, 17}}, {233, 191}, 4);
     BuildParams p;
+    // Two corner colours as on a lattice: off it, a source this small gets three by default
+    // (CellSet::default_corner_colours), and the counts below are those of two.
+    p.corner_colours = 2;
     p.variants = 2;
     p.patches = 2;
     p.candidates = 2;
