@@ -269,6 +269,13 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     //    and cut into the rest;
     //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
     //    round as squares, the same square at a third of all vertices.
+
+    // How many times over the set's images cover the source: the demo design at 360 dpi covers
+    // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
+    // its own account of what it copied (below).
+    const double reuse =
+        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
+    large_ = side > kLargeCell && reuse >= 1;
     if (params.lattice) {
         // On a lattice copies move only by lattice translations: the cut needs the room of
         // blocks half a cell across overlapping by half a block to follow a course or a grout
@@ -286,7 +293,8 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         // 0.65-1.00, texture energy 1.00-1.16).
         if (2 * std::min(source_rgb.cols, source_rgb.rows) < 3 * side)
             block_ = cv::Size(std::max(8, cw_ / 2), std::max(8, ch_ / 2));
-        overlap_ = std::max(2, std::min(block_.width, block_.height) / 4);
+        overlap_ = std::max(
+            2, std::min(block_.width, block_.height) / (large_ ? kLargeCellOverlapParts : 4));
     }
     w_ = frame_width(params.cell);
     // One block a strip where the source has room for it (smallest_source()).
@@ -311,22 +319,13 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     }
     usage_weight_ = kUsageCost * variance;
     same_place_weight_ = kSamePlaceCost * variance;  // on a lattice a ban (quilt_block())
-    // How many times over the set's images cover the source: the demo design at 360 dpi covers
-    // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
-    // its own account of what it copied (below).
-    const double reuse =
-        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
-    large_ = side > kLargeCell && reuse >= 1;
     if (large_) {
         // The same over a sixteenth of the cell, less what is still typical, times the variance:
         // a match cost per pixel.
         cv::Mat blurred;
         cv::GaussianBlur(z2, blurred, {0, 0}, std::max(1.0, side / 16.0));
         conspicuous_ = cv::max(blurred - kConspicuousZ2, 0.0) * (kConspicuousCost * variance);
-        if (params.lattice)
-            conspicuous_.setTo(0);  // grout lines are the design
-        else
-            overlap_ = std::max(2, std::min(block_.width, block_.height) / kLargeCellOverlapParts);
+        if (params.lattice) conspicuous_.setTo(0);  // grout lines are the design
     }
     if (!params.lattice && !large_ && std::max(source_lab.cols, source_lab.rows) > kCoarseSide &&
         slab_scan(params.cell, source_lab.size())) {
