@@ -474,6 +474,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
                            // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
                            params.wandering_frames && !lattice, params.smooth_steps});
         map.corner_colours = kinds, map.variants = set.variants();
+        // A set's images copy their source block by block: stored as such, a third of the bytes.
+        map.cell_storage = TextureMap::CellStorage::against_source;
         if (map.variants > 1)
             map.variant_rule = set.plain_in_four() ? TextureMap::VariantRule::plain_in_four
                                                    : TextureMap::VariantRule::hashed;

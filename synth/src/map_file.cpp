@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 
+#include "cell_image_coding.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/internal/corner_colours.hpp"
 #include "tilejet/synth/internal/diamond.hpp"
@@ -27,12 +28,14 @@ namespace {
 //   header  : magic[8] "TJMAP\r\n\x1a", u32 version, u32 section count, u64 file length,
 //             u32 CRC-32 of the section table, u32 reserved (0)
 //   table   : per section: tag[4], u32 index, u64 offset, u32 stored length, u32 raw length,
-//             u32 CRC-32 of the stored bytes, u32 flags (bit 0: zlib-compressed)
+//             u32 CRC-32 of the stored bytes, u32 flags (bit 0: zlib-compressed; bit 1: a CELL
+//             section coded against the source, cell_image_coding.hpp, version 4 on)
 //   payloads: back to back.
 // The magic's CR LF and ^Z catch text-mode transfers, as PNG's does.
 constexpr char kMagic[8] = {'T', 'J', 'M', 'A', 'P', '\r', '\n', '\x1a'};
 constexpr size_t kHeaderBytes = 32, kEntryBytes = 32;
-constexpr uint32_t kFlagZlib = 1;
+constexpr uint32_t kFlagZlib = 1, kFlagSourceCoded = 2;
+constexpr uint32_t kSourceCodedVersion = 4;
 constexpr uint32_t kMaxSections = 4096;
 // META holds a few numbers.
 constexpr uint32_t kMaxMetaBytes = 1024;
@@ -330,12 +333,27 @@ void assign_map_id(TextureMap& map) {
 }
 
 uint32_t format_version_of(const TextureMap& map) {
+    if (map.cell_storage == TextureMap::CellStorage::against_source) return kSourceCodedVersion;
     return records_variant_rule(map) ? 3 : 2;
 }
 
 std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
     std::vector<Section> sections = content_sections(map);
     sections.push_back({"IDNT", 0, std::vector<uint8_t>(map.id.begin(), map.id.end())});
+    // The id above is that of the pixels; the file may keep them coded.
+    std::vector<uint32_t> flags(sections.size(), kFlagZlib);
+    if (map.cell_storage == TextureMap::CellStorage::against_source &&
+        map.source.type() == CV_8UC3) {
+        std::vector<cv::Mat> cells;
+        for (const CellImage& c : map.cell_images)
+            cells.push_back(c.pixels);
+        std::vector<std::vector<uint8_t>> coded = detail::code_cell_images(cells, map.source);
+        for (size_t i = 0; i < sections.size(); ++i)
+            if (sections[i].tag == "CELL") {
+                sections[i].raw = std::move(coded[sections[i].index]);
+                flags[i] |= kFlagSourceCoded;
+            }
+    }
 
     std::vector<std::vector<uint8_t>> stored;
     for (const Section& s : sections)
@@ -350,7 +368,7 @@ std::vector<uint8_t> encode_texture_map(const TextureMap& map) {
         table.le<uint32_t>(uint32_t(stored[i].size()));
         table.le<uint32_t>(uint32_t(sections[i].raw.size()));
         table.le<uint32_t>(crc_of(stored[i]));
-        table.le<uint32_t>(kFlagZlib);
+        table.le<uint32_t>(flags[i]);
         offset += stored[i].size();
     }
     Writer out;
@@ -427,6 +445,16 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (offset > bytes.size() || stored > bytes.size() - offset)
             fail(e.label + " lies outside the file");
         if (e.raw_len > kMaxRawSection) fail(e.label + " is too large");
+        if (e.flags & ~(kFlagZlib | kFlagSourceCoded))
+            fail(e.label + " has unknown flags " + std::to_string(e.flags));
+        if (e.flags & kFlagSourceCoded) {
+            if (e.tag != "CELL")
+                fail(e.label + " is marked coded against the source: only cell images are");
+            if (version < kSourceCodedVersion)
+                fail(e.label + " is coded against the source in a map of format version " +
+                     std::to_string(version) + " (it came with version " +
+                     std::to_string(kSourceCodedVersion) + ")");
+        }
         raw_total += e.raw_len;
         if (raw_total > kMaxRawTotal)
             fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) + " MiB");
@@ -461,8 +489,17 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         if (entries[meta->second].raw_len > kMaxMetaBytes) fail("section META[0] is too large");
         const std::vector<uint8_t> data = inflate(entries[meta->second]);
         Reader r(data, where + " section META[0]");
-        r.le<uint32_t>("cell width"), r.le<uint32_t>("cell height");
+        const auto cw = r.le<uint32_t>("cell width"), ch = r.le<uint32_t>("cell height");
         const auto images = r.le<uint32_t>("cell image count");
+        // Coded cell images decode to their pixels: those count against the limit too.
+        if (cw <= uint32_t(kMaxCellSide) && ch <= uint32_t(kMaxCellSide))
+            for (const Entry& e : entries)
+                if (e.flags & kFlagSourceCoded) {
+                    raw_total += 8 + uint64_t(cw) * ch * 3;
+                    if (raw_total > kMaxRawTotal)
+                        fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) +
+                             " MiB");
+                }
         for (const Entry& e : entries) {
             const bool per_image = e.tag == "CELL" || e.tag == "PATA" || e.tag == "PATB" ||
                                    e.tag == "OVLA" || e.tag == "OVLB";
@@ -568,8 +605,19 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     for (uint32_t t = 0; t < images; ++t) {
         CellImage c;
         Reader img = section("CELL", t);
-        c.pixels = read_image(img, kMaxCellSide);
-        img.done();
+        if (const size_t i = where_is.at({"CELL", t}); entries[i].flags & kFlagSourceCoded) {
+            // Decoded, and its pixels kept in place of the code for the content hash.
+            std::vector<uint8_t>& raw = ordered[slot[i]].raw;
+            c.pixels = detail::decode_cell_image(raw, map.source, {map.cell_width, map.cell_height},
+                                                 where + " " + entries[i].label);
+            Writer plain;
+            write_image(plain, c.pixels);
+            raw = std::move(plain.bytes);
+            map.cell_storage = TextureMap::CellStorage::against_source;
+        } else {
+            c.pixels = read_image(img, kMaxCellSide);
+            img.done();
+        }
         if (c.pixels.cols != map.cell_width || c.pixels.rows != map.cell_height)
             img.fail("cell image size differs from the cell size");
         Reader pa = section("PATA", t), pb = section("PATB", t);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <opencv2/core.hpp>
 
+#include "cell_image_coding.hpp"
 #include "fixtures.hpp"
 #include "tilejet/synth/map_file.hpp"
 #include "tilejet/synth/sampler.hpp"
@@ -263,5 +264,49 @@ TEST_CASE("damaged map files are refused with a message naming the file", "[mapf
         REQUIRE_THAT(load_error(dir, ""), Contains(name) && Contains("empty"));
         REQUIRE_THROWS_WITH(load_texture_map(dir / "nope.tjmap"),
                             Contains("nope.tjmap") && Contains("No such file"));
+    }
+}
+
+TEST_CASE("damaged cell images coded against the source are refused, naming the section",
+          "[mapfile][coding]") {
+    TempDir dir;
+    TextureMap map = small_map();
+    map.cell_storage = TextureMap::CellStorage::against_source;
+    save_texture_map(map, dir / "coded.tjmap");
+    const std::string good = tilejet::test::read_file(dir / "coded.tjmap");
+    REQUIRE(load_error(dir, good).empty());
+    const auto flag = [&](const std::string& tag, uint32_t flags, uint32_t version) {
+        auto sections = sections_of(good);
+        for (StoredSection& sec : sections)
+            if (sec.tag == tag) sec.flags = flags;
+        return load_error(dir, file_of(sections, version));
+    };
+    REQUIRE(flag("CELL", 3, 4).empty());  // the file as written, rebuilt by the test
+    SECTION("the coded flag on a section other than a cell image") {
+        REQUIRE_THAT(flag("SRCE", 3, 4), Contains("SRCE[0]") && Contains("only cell images are"));
+    }
+    SECTION("a coded cell image in a file of a version before coding") {
+        REQUIRE_THAT(flag("CELL", 3, 3),
+                     Contains("CELL[0]") && Contains("format version 3 (it came with version 4)"));
+    }
+    SECTION("flags this tilejet does not know") {
+        REQUIRE_THAT(flag("CELL", 3 | 8, 4), Contains("CELL[0] has unknown flags 11"));
+    }
+    SECTION("a cell image coded, but the flag not set: its bytes are no image") {
+        REQUIRE_THAT(flag("CELL", 1, 4), Contains("CELL[0]"));
+    }
+    SECTION("a block copying from outside the source, stored uncompressed") {
+        std::vector<uint8_t> coded = tilejet::synth::detail::code_cell_images(
+                                         std::vector{map.cell_images[0].pixels}, map.source)
+                                         .front();
+        coded[8] = 0xff, coded[9] = 0x7f;  // the first block's dx: 32767 px
+        auto sections = sections_of(good);
+        for (StoredSection& sec : sections)
+            if (sec.tag == "CELL")
+                sec = {"CELL", 0, uint32_t(coded.size()), 2,
+                       std::string(coded.begin(), coded.end())};
+        REQUIRE_THAT(load_error(dir, file_of(sections, 4)),
+                     Contains(dir.path().string()) && Contains("CELL[0]") &&
+                         Contains("block 0,0 copies from outside the source"));
     }
 }

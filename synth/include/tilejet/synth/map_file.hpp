@@ -21,9 +21,10 @@ class MapFileError : public SynthError {
     using SynthError::SynthError;
 };
 
-// 2: corner-coloured cell sets (CSET); 3: their variant rule (CSET). A map is written with the
+// 2: corner-coloured cell sets (CSET); 3: their variant rule (CSET); 4: cell images coded
+// against the source (section flag, cell_image_coding.hpp). A map is written with the
 // lowest version that holds it, so maps without the newer fields still open in older tilejets.
-inline constexpr uint32_t kMapFormatVersion = 3;
+inline constexpr uint32_t kMapFormatVersion = 4;
 
 // Computes and sets map.id from the map's content.
 void assign_map_id(TextureMap& map);

@@ -128,6 +128,11 @@ struct TextureMap {
         plain_in_four = 3,
     };
     VariantRule variant_rule = VariantRule::parity;
+    // How the file stores the cell images: as pixels, or as what they copy from the source and
+    // how they differ from it (cell_image_coding.hpp; format version 4), a third of the bytes
+    // for a set. The pixels, and so renders and the map id, are the same either way.
+    enum class CellStorage : uint32_t { pixels = 0, against_source = 1 };
+    CellStorage cell_storage = CellStorage::pixels;
     cv::Mat source;  // CV_8UC3, R,G,B: what patches copy from (CV_8UC4 C,M,Y,K once converted)
     std::vector<CellImage> cell_images;
     BuildRecord build;
