@@ -181,8 +181,9 @@ void add_map_commands(CLI::App& app) {
         "--corner-colours", build->params.corner_colours,
         "corner colours K: K^4 cell images per variant that meet seamlessly whatever the hash "
         "picks, so no cell image, edge or corner repeats on a grid; 1: one cell image "
-        "(default 2, but 3 where 81 images still copy less than the exemplar: slab scans from "
-        "about 5800 px)");
+        "(default 3 for cells up to 320 px and for slab scans from about 5800 px, where 81 "
+        "images still copy less than the exemplar; 4 for exemplars under 128 px; 2 for other "
+        "large cells and on a lattice)");
     b->add_option("--variants", build->params.variants,
                   "cell images per combination of corner colours, 1 or 2: with 2 a cell shows "
                   "either by hash, but where a neighbour has its combination the one that parts "

@@ -236,6 +236,12 @@ cv::Size CellSet::smallest_source(cv::Size cell) {
             std::max(8, cell.height * 3 / 4) + 2 * w + 2};
 }
 
+int CellSet::default_corner_colours(cv::Size cell, cv::Size source) {
+    if (slab_scan(cell, source)) return 3;
+    if (std::min(source.width, source.height) < kSmallSource / 2) return 4;
+    return std::min(cell.width, cell.height) <= kLargeCell ? 3 : 2;
+}
+
 bool CellSet::slab_scan(cv::Size cell, cv::Size source) {
     constexpr double kThreeColourImages = 81;
     return kThreeColourImages * cell.area() < double(source.area());

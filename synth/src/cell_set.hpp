@@ -85,20 +85,24 @@ class CellSet {
     // colours (one variant) still copy less than the source (from about 5800 px with 640 px
     // cells).
     static bool slab_scan(cv::Size cell, cv::Size source);
-    // Corner colours K by default: 2, but 3 for slab scans: 16 images held a tenth of an
-    // 8192 px slab, and its wall missed most of the stone's variety. More for sources smaller
-    // than the 256 px the cells' grain rule starts from (small pattern files), whose cells are
-    // as large as the source: every image there is made from the same few windows, and with
-    // 36 images granite crops of 64, 128 and 192 px repeated at lags of two and three cells
-    // (periodicity 2.37, 2.41, 2.75 times quilting's). Three colours (168 images, a strip at
-    // a ninth of the edges): 1.52, 0.89, 1.45; four (520) on 64 px: 1.10, 2.9 MB in 5 s (on
-    // 192 px 0.93, but 31 MB in 63 s: so three from 128 px). Not yet enough on every small
-    // source (192 px: 1.45; README, session 38).
-    static int default_corner_colours(cv::Size cell, cv::Size source) {
-        if (slab_scan(cell, source)) return 3;
-        const int side = std::min(source.width, source.height);
-        return side < kSmallSource / 2 ? 4 : side < kSmallSource ? 3 : 2;
-    }
+    // Corner colours K by default (off a lattice, which keeps 2: build.cpp). 3 for slab scans:
+    // 16 images held a tenth of an 8192 px slab, and its wall missed most of the stone's
+    // variety. 3 for cells up to kLargeCell, the designs of a few hundred px at their own
+    // resolution (session 39): their source is one or two cells across, so a block at a place
+    // of the cell can only come from part of it, and the cells' contents lined up with one
+    // another; with 36 images, two cells of a wall showed one image one time in 36 and shared
+    // an edge's strip one time in four. The wall's autocorrelation at lags of whole cells, 0.04
+    // to 0.06 on average on the corpus (0 elsewhere), fell to 0.016-0.017 with 168 images, a
+    // strip at a ninth of the edges (granite, cobbles, slate, limestone), and the periodicity
+    // of every corpus design and of the demo design at 100 dpi with it (slate 1.23 -> 0.98, the
+    // demo design 5.74 -> 1.58 at map seed 2); texture energy no worse but on limestone (1.10
+    // -> 1.18). Affordable since cell images are stored against the source (a 2 MB map, not
+    // 26; cell_image_coding.hpp); builds take four times as long (384 px designs: 25-35 s).
+    // Larger cells (the demo design at 360 dpi, slab scans up to about 5800 px) keep 2: their
+    // sources are several cells across, and 168 images of 640 px would take four minutes.
+    // 4 for sources under 128 px (pattern files): a 64 px granite crop 2.37 with 36 images,
+    // 1.52 with 168, 1.10 with 520 (session 38).
+    static int default_corner_colours(cv::Size cell, cv::Size source);
     static constexpr int kSmallSource = 256;
 
     size_t size() const { return images_.size(); }

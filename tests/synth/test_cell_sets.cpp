@@ -464,6 +464,9 @@ TEST_CASE("by default a set has two variants whatever the grain, but one for sla
     BuildParams p;
     p.patches = 2;
     p.candidates = 2;
+    // Two corner colours, the counts below those of 16 combinations (256 px cells get three by
+    // default since session 39).
+    p.corner_colours = 2;
     // Cells from the grain (256 px here).
     const TextureMap of_fine = build_texture_map(fine, p), of_coarse = build_texture_map(coarse, p);
     INFO("grain: fine " << of_fine.build.grain << " px, coarse " << of_coarse.build.grain << " px");
@@ -633,8 +636,9 @@ TEST_CASE("the grid detector sees the grid of a one-image map and none in a cell
     p.patches = 12;
     p.candidates = 96;
     p.seed = 3;
+    p.corner_colours = 2;  // the fewest a set has: its grid is the one to look for
     const TextureMap set = build_texture_map(demo_exemplar(), p);
-    REQUIRE(set.cell_images.size() == 36);  // 2 corner colours, two variants: the defaults
+    REQUIRE(set.cell_images.size() == 36);  // 2 corner colours, two variants
     const Region region{1000, -2000, 384, 384};
     const double old_grid = grid_contrast(render_region(old_map, 7, region), 32, 32);
     const double new_grid = grid_contrast(render_region(set, 7, region), 32, 32);
@@ -800,6 +804,7 @@ TEST_CASE("the corner cores of a small-celled set hold no fleck", "[cell_set][he
     INFO("white share of the source " << cv::countNonZero(white) / double(side * side));
     BuildParams p;
     p.cell_size = cell;
+    p.corner_colours = 2;  // a core at half the vertices: where a fleck shows most
     p.variants = 1;
     p.patches = 2;
     p.candidates = 2;
@@ -960,9 +965,9 @@ TEST_CASE("with steps smoothed, a set is still seamless for every pair and its b
     CHECK(changed > plain.cell_images.size() / 2);
 }
 
-TEST_CASE(
-    "slab scans get three corner colours by default, pattern files three or four, the rest two",
-    "[cell_set]") {
+TEST_CASE("slab scans and cells up to 320 px get three corner colours by default, pattern files "
+          "four, large cells two",
+          "[cell_set]") {
     using tilejet::synth::detail::CellSet;
     // 81 images of 640 px cells hold 33 Mpx: less than an 8192 px slab (67 Mpx), twice a 4096 px
     // one.
@@ -970,13 +975,17 @@ TEST_CASE(
     CHECK(CellSet::default_corner_colours({640, 640}, {4096, 4096}) == 2);
     CHECK(CellSet::default_corner_colours({640, 640}, {5760, 5760}) == 2);
     CHECK(CellSet::default_corner_colours({640, 640}, {5800, 5800}) == 3);
-    CHECK(CellSet::default_corner_colours({256, 256}, {384, 384}) == 2);
+    // Large cells (the demo design at 360 dpi) two; up to 320 px three (session 39).
     CHECK(CellSet::default_corner_colours({480, 480}, {1843, 1843}) == 2);
-    // Sources under 256 px (pattern files): 3, and 4 under 128 px.
-    CHECK(CellSet::default_corner_colours({256, 256}, {256, 256}) == 2);
+    CHECK(CellSet::default_corner_colours({352, 352}, {1024, 1024}) == 2);
+    CHECK(CellSet::default_corner_colours({320, 320}, {512, 512}) == 3);
+    CHECK(CellSet::default_corner_colours({256, 256}, {384, 384}) == 3);
+    CHECK(CellSet::default_corner_colours({256, 256}, {256, 256}) == 3);
     CHECK(CellSet::default_corner_colours({192, 192}, {192, 192}) == 3);
+    // Sources under 128 px (pattern files): 4.
     CHECK(CellSet::default_corner_colours({100, 75}, {100, 75}) == 4);
-    // Built by default, a design of the corpus's size has two (as small_set(), asked for two).
+    CHECK(CellSet::default_corner_colours({128, 128}, {128, 128}) == 3);
+    // Built by default, a design of the corpus's size has three.
     BuildParams defaults;
     CHECK(defaults.corner_colours == 0);
     defaults.cell_size = 96;
@@ -984,7 +993,7 @@ TEST_CASE(
         load_exemplar(std::filesystem::path(TILEJET_SOURCE_DIR) / "tests/quality/corpus/gravel.png",
                       {}),
         defaults);
-    CHECK(map.corner_colours == 2);
+    CHECK(map.corner_colours == 3);
     for (const int bad : {-1, 5}) {
         defaults.corner_colours = bad;
         CHECK_THROWS_WITH(

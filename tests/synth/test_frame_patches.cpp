@@ -31,6 +31,7 @@ cv::Mat corpus_design(const char* name) {
 TextureMap marble_map(int frame_patches, uint64_t seed = 1) {
     BuildParams p;
     p.cell_size = 96;
+    p.corner_colours = 2;  // 36 images (96 px cells get 3 by default: 168, four times the build)
     p.seed = seed;
     p.frame_patches = frame_patches;
     return build_texture_map(corpus_design("marble.png"), p);
