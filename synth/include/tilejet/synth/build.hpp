@@ -22,9 +22,14 @@ struct BuildParams {
     // 1.54), build in a quarter of the time and a fifth of the bytes; 81 images of 256 px took
     // 61 s for a 384 px exemplar and 15 MB. The hash still picks among 16 images per cell, with
     // their own patches over them, and no grid showed on walls of either.
-    // 0: that default, but 3 where 81 images still copy less than the source (slab scans from
-    // about 5800 px, CellSet::default_corner_colours): an 8192 px slab's texture energy 1.14
-    // times quilting's against 2.40 with 16 images, which held a tenth of it (session 36).
+    // 0: the default of CellSet::default_corner_colours. 3 where 81 images still copy less
+    // than the source (slab scans from about 5800 px): an 8192 px slab's texture energy 1.14
+    // times quilting's against 2.40 with 16 images, which held a tenth of it (session 36). And
+    // since session 39 3 for cells up to 320 px off a lattice: with 36 images the walls of
+    // designs one or two cells across correlated at every lag of whole cells (0.04-0.07 on
+    // average, 0.016-0.023 with 168 images; eval's periodicity over 8 cells failed on slate
+    // and the demo design at 100 dpi), and the bytes that measurement above counted went when
+    // cell images were stored against the source (2 MB for 168 images of 256 px).
     int corner_colours = 0;
     // V cell images per combination of corner colours, K^4 V in all (with 2, plain combinations
     // get 4: K^4 2 + 2 K); with 2 a cell shows one by hash, but where a neighbour has its
