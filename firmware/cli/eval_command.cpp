@@ -139,6 +139,9 @@ void print_summary(const quality::ReportPage& page, const std::string& against,
     std::printf("  same place of the cell    %s %% along the borders, %s %% inside\n",
                 quality::gate_figure(g.cell_border_repeat * 100).c_str(),
                 quality::gate_figure(g.cell_inside_repeat * 100).c_str());
+    std::printf("  correlation, whole cells  %s at lags of 2 cells and more (%s half a cell off)\n",
+                quality::gate_figure(g.whole_cell_correlation).c_str(),
+                quality::gate_figure(g.half_cell_correlation).c_str());
     std::printf("  texture coherence         %s along the cell borders, %s inside (quilt: %s)\n",
                 quality::gate_figure(g.coherence_border).c_str(),
                 quality::gate_figure(g.coherence_inside).c_str(),
@@ -363,10 +366,10 @@ void run_eval(const EvalOptions& o) {
                                               {"band_px", tails.band}};
     page.gates.light_border = tails.border_light, page.gates.light_inside = tails.inside_light;
     progress.say("tilejet: lines along the cell grid");
+    const cv::Mat stretch =
+        quality::cell_stretch_plane(map, spec.seed, quality::kWideStretch, o.threads);
     cv::Mat lines_picture;
-    const quality::CellGridLines lines = quality::cell_grid_lines(
-        quality::cell_stretch_plane(map, spec.seed, quality::kWideStretch, o.threads), cell,
-        &lines_picture);
+    const quality::CellGridLines lines = quality::cell_grid_lines(stretch, cell, &lines_picture);
     quality::write_rgb_png(lines_picture, dir / "cell-lines.png");
     page.has_cell_lines_picture = true;
     section("tilejet")["cell_grid_lines"] = {{"rows", lines.rows},
@@ -374,6 +377,12 @@ void run_eval(const EvalOptions& o) {
                                              {"row_at", lines.row_at},
                                              {"column_at", lines.column_at}};
     page.gates.grid_lines_rows = lines.rows, page.gates.grid_lines_columns = lines.columns;
+    progress.say("tilejet: correlation at lags of whole cells");
+    const quality::CellLagCorrelation lag = quality::cell_lag_correlation(stretch, cell);
+    section("tilejet")["cell_lag_correlation"] = {
+        {"whole_cells", lag.whole_cells}, {"half_cells", lag.half_cells}, {"lags", lag.lags}};
+    page.gates.whole_cell_correlation = lag.whole_cells;
+    page.gates.half_cell_correlation = lag.half_cells;
     page.gates.coherence_border = place.border, page.gates.coherence_inside = place.inside;
     page.gates.quilt_coherence = section("quilt").value("texture_coherence", 0.0);
     progress.say("walls side by side");

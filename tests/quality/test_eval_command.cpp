@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +71,12 @@ TEST_CASE("tilejet eval writes the report, its pictures and metrics.json", "[qua
     CHECK(lines["rows"].get<double>() > 0);
     CHECK(lines["row_at"].get<int>() >= 0);
     CHECK(lines["column_at"].get<int>() < 64);
+    // The correlation at whole cells: in the gates as in tilejet's figures, over some lags.
+    const auto& lag = m["tilejet"]["cell_lag_correlation"];
+    CHECK(gates["whole_cell_correlation"] == lag["whole_cells"]);
+    CHECK(gates["half_cell_correlation"] == lag["half_cells"]);
+    CHECK(lag["lags"].get<int>() > 0);
+    CHECK(std::abs(lag["whole_cells"].get<double>()) <= 1);
     for (const char* method : {"tilejet", "canvas", "cell", "quilt"}) {
         INFO(method);
         REQUIRE(m.contains(method));

@@ -142,3 +142,59 @@ TEST_CASE("a design about one cell across lines its cells up less with the defau
     CHECK(two > 0.03);  // what the default is for: the check below can fail
     CHECK(chosen < 0.7 * two);
 }
+
+TEST_CASE("the correlation at whole cells is the share of cells that repeat, and none elsewhere",
+          "[quality]") {
+    // Planes of 16 x 16 cells of 24 px, each cell one of `images` tiles of soft noise drawn at
+    // random: two cells two or more apart show one tile one time in `images`, and correlate
+    // fully then, not at all otherwise.
+    const cv::Size cell(24, 24);
+    const auto plane_of = [&](int images, uint64_t seed) {
+        cv::RNG rng(seed);
+        std::vector<cv::Mat> tiles;
+        for (int t = 0; t < images; ++t) {
+            cv::Mat tile(cell, CV_8UC3);
+            rng.fill(tile, cv::RNG::UNIFORM, 0, 256);
+            cv::GaussianBlur(tile, tile, {0, 0}, 1.0);
+            tiles.push_back(tile);
+        }
+        cv::Mat plane(16 * cell.height, 16 * cell.width, CV_8UC3);
+        for (int j = 0; j < 16; ++j)
+            for (int i = 0; i < 16; ++i)
+                tiles[size_t(rng.uniform(0, images))].copyTo(
+                    plane(cv::Rect(i * cell.width, j * cell.height, cell.width, cell.height)));
+        return plane;
+    };
+    const quality::CellLagCorrelation one = quality::cell_lag_correlation(plane_of(1, 1), cell);
+    const quality::CellLagCorrelation four = quality::cell_lag_correlation(plane_of(4, 2), cell);
+    const quality::CellLagCorrelation all =
+        quality::cell_lag_correlation(plane_of(256 * 4, 3), cell);
+    INFO("one tile " << one.whole_cells << " / " << one.half_cells << ", four " << four.whole_cells
+                     << " / " << four.half_cells << ", all different " << all.whole_cells << " / "
+                     << all.half_cells);
+    // Lags of 0-7 cells down by -7..7 across, less the six within a cell of none and the six
+    // others left of none on its own row (the right ones mirror them).
+    CHECK(one.lags == 8 * 15 - 6 - 6);
+    CHECK(one.whole_cells > 0.99);
+    CHECK(four.whole_cells > 0.15);
+    CHECK(four.whole_cells < 0.35);
+    CHECK(std::abs(all.whole_cells) < 0.03);
+    // Half a cell off, a cell meets halves of others: nothing where they all differ (a plane of
+    // one tile meets itself shifted, what its noise makes of that).
+    CHECK(std::abs(all.half_cells) < 0.03);
+    CHECK(std::abs(four.half_cells) < 0.1);
+    // The same mean, lag by lag, as the test's own Pearson correlation over the overlap.
+    cv::Mat lab;
+    plane_of(4, 2).convertTo(lab, CV_32FC3, 1 / 255.0);
+    cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);
+    double sum = 0;
+    int lags = 0;
+    for (int j = 0; j <= 7; ++j)
+        for (int i = -7; i <= 7; ++i)
+            if (std::max(std::abs(i), j) >= 2 && !(j == 0 && i < 0))
+                sum += test::correlation_at(lab, {i * cell.width, j * cell.height}), ++lags;
+    REQUIRE(lags == four.lags);
+    CHECK(four.whole_cells == Approx(sum / lags).margin(0.002));
+    // A plane with no lag of two cells within half of it has none.
+    CHECK(quality::cell_lag_correlation(plane_of(1, 4)(cv::Rect(0, 0, 72, 72)), cell).lags == 0);
+}

@@ -38,6 +38,8 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     j["quilt_coherence"] = g.quilt_coherence;
     j["light_border"] = g.light_border;
     j["light_inside"] = g.light_inside;
+    j["whole_cell_correlation"] = g.whole_cell_correlation;
+    j["half_cell_correlation"] = g.half_cell_correlation;
     j["grid_lines_rows"] = value(g.grid_lines_rows);
     j["grid_lines_columns"] = value(g.grid_lines_columns);
     return j;

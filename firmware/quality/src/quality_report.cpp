@@ -186,7 +186,15 @@ std::string gates_html(const ReportPage& page) {
       << " %</div><div class='what'>share of tilejet's plane in its own lightest 5 % (veins "
          "and flecks), along the cell borders / inside the cells: about 5 % each where the "
          "wall shows them anywhere, lower along the borders where calm frames draw the cell "
-         "grid</div></div></div><p>The first two gates pass at "
+         "grid</div></div>"
+      << "<div class='gate'><div class='label'>correlation at whole cells</div><div "
+         "class='value'>"
+      << gate_figure(g.whole_cell_correlation) << " / " << gate_figure(g.half_cell_correlation)
+      << "</div><div class='what'>tilejet's autocorrelation averaged over every lag of two "
+         "cells and more / the same lags half a cell further: what the set repeats at every "
+         "lag of the lattice (cell images, strips, places of the cell), under the few chance "
+         "repeats that make periodicity's highest peak; about 0 where nothing lines up with the "
+         "cells</div></div></div><p>The first two gates pass at "
       << gate_figure(g.limit)
       << " or below (1 = as good as quilting every tile offline), the third at "
       << gate_figure(g.grid_lines_limit) << " or below.</p>";

@@ -45,6 +45,11 @@ struct QualityGates {
     // and inside (cell_place_tails.hpp): calm lines along the cells where the border's is the
     // lower. Set by eval; 0 when not measured.
     double light_border = 0, light_inside = 0;
+    // Nor these: tilejet's autocorrelation averaged over the lags of whole cells, two cells and
+    // more, and the same half a cell further (periodicity.hpp, cell_lag_correlation()): what the
+    // set repeats at every lag of the lattice, under the chance repeats that make periodicity's
+    // highest peak; about 0 where nothing lines up with the cells. Set by eval.
+    double whole_cell_correlation = 0, half_cell_correlation = 0;
     // And a gate: how much more the tone of tilejet's plane changes at its strongest place of the
     // cell than elsewhere, along the rows and the columns (cell_grid_lines.hpp): 1 where no line
     // follows the cell borders. Set by eval after quality_gates().
