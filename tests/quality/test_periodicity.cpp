@@ -123,16 +123,11 @@ TEST_CASE("a design about one cell across lines its cells up less with the defau
         p.cell_size = 256;
         p.corner_colours = corner_colours;  // 0: the default
         const synth::TextureMap set = synth::build_texture_map(test::demo_exemplar(), p);
-        cv::Mat lab;
-        synth::render_region(set, 7, {0, 0, 2048, 2048}).convertTo(lab, CV_32FC3, 1 / 255.0);
-        cv::cvtColor(lab, lab, cv::COLOR_RGB2Lab);
-        double sum = 0;
-        int lags = 0;
-        for (int j = 0; j <= 3; ++j)
-            for (int i = -3; i <= 3; ++i)
-                if (std::max(std::abs(i), j) >= 2 && !(j == 0 && i < 0))
-                    sum += test::correlation_at(lab, {256 * i, 256 * j}), ++lags;
-        return std::pair{set.corner_colours, sum / lags};
+        // Over lags of 2 and 3 cells (the test below checks the measure itself).
+        const quality::CellLagCorrelation c = quality::cell_lag_correlation(
+            synth::render_region(set, 7, {0, 0, 2048, 2048}), {256, 256});
+        REQUIRE(c.lags == 20);
+        return std::pair{set.corner_colours, c.whole_cells};
     };
     const auto [two_k, two] = mean_at_cell_lags(2);
     const auto [chosen_k, chosen] = mean_at_cell_lags(0);
