@@ -126,6 +126,7 @@ TEST_CASE("a set with frame patches renders as it samples, through its file",
     // The same build on one thread is the same map.
     BuildParams p;
     p.cell_size = 96;
+    p.corner_colours = 2;  // as marble_map()
     p.seed = 3;
     p.frame_patches = 4;
     p.threads = 1;
@@ -157,6 +158,7 @@ TEST_CASE("smoothed cell images get no frame patches: their frames no longer cop
           "[frame_patches][cell_set]") {
     BuildParams p;
     p.cell_size = 96;
+    p.corner_colours = 2;  // 36 images are as many as this needs, in a quarter of the build
     p.frame_patches = 4;
     p.smooth_steps = true;
     const TextureMap map = build_texture_map(corpus_design("marble.png"), p);
