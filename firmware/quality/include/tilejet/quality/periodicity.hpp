@@ -28,7 +28,7 @@ AutocorrelationPeak autocorrelation_peak(const cv::Mat& rgb, int min_lag = kMinP
 // The same correlation averaged over the lags of whole cells, two cells or more and within half
 // the plane each way, and over the same lags half a cell further. The highest peak of a set's
 // wall over eight cells is mostly a few pairs of cells that chance made show one image (the
-// demo design at 100 dpi, map seed 2: four of twenty pairs at three cells by three, 0.28); the
+// demo design at 100 dpi, map seed 2: 0.17 at three cells by four, four of twenty pairs); the
 // mean over all those lags is what the set does everywhere, every cell image, strip and place
 // of the cell that recurs (0.047 there with two corner colours, 0.026 with three; session 39).
 // Where nothing lines up with the cells both are about 0.
