@@ -1,13 +1,12 @@
 #include "cell_image_coding.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
 #include <unordered_map>
 
+#include "map_bytes.hpp"
 #include "tilejet/synth/internal/mix64.hpp"
 #include "tilejet/synth/internal/parallel_for.hpp"
-#include "tilejet/synth/map_file.hpp"
 
 namespace tilejet::synth::detail {
 
@@ -17,7 +16,6 @@ namespace {
 // the block: a whole 8 px block straddling a cut is nowhere in the source, a 4 px square of it
 // mostly is.
 constexpr int kKeySide = 4;
-constexpr int kKeyPlaces = 3;  // top-left, centre and bottom-right quarter of the block
 
 struct Displacement {
     int16_t dx = kNoPrediction, dy = kNoPrediction;
@@ -37,7 +35,8 @@ uint64_t key_at(const cv::Mat& rgb, int x, int y) {
     return h;
 }
 
-// Where in a block of `size` px its key squares lie (fewer in blocks too small for them).
+// Where in a block of `size` px its key squares lie: top-left, centre and bottom-right (fewer
+// in blocks too small for them).
 std::vector<cv::Point> key_places(cv::Size size) {
     std::vector<cv::Point> out;
     if (size.width < kKeySide || size.height < kKeySide) return out;
@@ -45,6 +44,11 @@ std::vector<cv::Point> key_places(cv::Size size) {
     for (const cv::Point p : {cv::Point(0, 0), cv::Point(mx / 2, my / 2), cv::Point(mx, my)})
         if (std::ranges::find(out, p) == out.end()) out.push_back(p);
     return out;
+}
+
+// Coding blocks along `side` px, the last one partial.
+int blocks_along(int side) {
+    return (side + kCodingBlock - 1) / kCodingBlock;
 }
 
 cv::Rect block_rect(int bx, int by, cv::Size cell) {
@@ -76,17 +80,6 @@ size_t nonzero_residuals(const cv::Mat& cell, const cv::Rect& block, const cv::M
     return n;
 }
 
-class Writer {
-  public:
-    std::vector<uint8_t> bytes;
-    template <typename T>
-    void le(T v) {
-        auto u = std::bit_cast<std::make_unsigned_t<T>>(v);
-        for (size_t i = 0; i < sizeof(T); ++i)
-            bytes.push_back(uint8_t(u >> (8 * i)));
-    }
-};
-
 }  // namespace
 
 std::vector<std::vector<uint8_t>> code_cell_images(std::span<const cv::Mat> cells,
@@ -94,8 +87,7 @@ std::vector<std::vector<uint8_t>> code_cell_images(std::span<const cv::Mat> cell
     if (cells.empty()) return {};
     CV_Assert(source.type() == CV_8UC3);
     const cv::Size cell = cells.front().size();
-    const int bw = (cell.width + kCodingBlock - 1) / kCodingBlock;
-    const int bh = (cell.height + kCodingBlock - 1) / kCodingBlock;
+    const int bw = blocks_along(cell.width), bh = blocks_along(cell.height);
     const size_t blocks = size_t(bw) * size_t(bh);
 
     // What each block's key squares are, and where in the source each was first seen.
@@ -194,52 +186,45 @@ std::vector<std::vector<uint8_t>> code_cell_images(std::span<const cv::Mat> cell
 
 cv::Mat decode_cell_image(std::span<const uint8_t> coded, const cv::Mat& source, cv::Size cell,
                           const std::string& where) {
-    const auto fail = [&](const std::string& why) { throw MapFileError(where + ": " + why); };
-    size_t pos = 0;
-    const auto u32 = [&](const char* what) {
-        if (coded.size() - pos < 4) fail(std::string("ends before ") + what);
-        uint32_t v = 0;
-        for (int i = 0; i < 4; ++i)
-            v |= uint32_t(coded[pos + size_t(i)]) << (8 * i);
-        pos += 4;
-        return v;
-    };
-    const uint32_t w = u32("image width"), h = u32("image height");
+    Reader r(coded, where);
+    const auto w = r.le<uint32_t>("image width"), h = r.le<uint32_t>("image height");
     if (w != uint32_t(cell.width) || h != uint32_t(cell.height))
-        fail("cell image size " + std::to_string(w) + "x" + std::to_string(h) +
-             " differs from the cell size");
-    const int bw = (cell.width + kCodingBlock - 1) / kCodingBlock;
-    const int bh = (cell.height + kCodingBlock - 1) / kCodingBlock;
+        r.fail("cell image size " + std::to_string(w) + "x" + std::to_string(h) +
+               " differs from the cell size");
+    const int bw = blocks_along(cell.width), bh = blocks_along(cell.height);
     const size_t blocks = size_t(bw) * size_t(bh), pixels = size_t(cell.area()) * 3;
-    if (coded.size() - pos != 4 * blocks + pixels)
-        fail("holds " + std::to_string(coded.size() - pos) +
-             " bytes of displacements and residuals, " + std::to_string(4 * blocks + pixels) +
-             " expected");
+    if (r.remaining() != 4 * blocks + pixels)
+        r.fail("holds " + std::to_string(r.remaining()) +
+               " bytes of displacements and residuals, " + std::to_string(4 * blocks + pixels) +
+               " expected");
+    std::vector<Displacement> displacements(blocks);
+    for (Displacement& d : displacements)
+        d.dx = r.le<int16_t>("displacement"), d.dy = r.le<int16_t>("displacement");
+    const uint8_t* residual = r.take(pixels, "residuals").data();
     cv::Mat out(cell, CV_8UC3);
-    const uint8_t* residual = coded.data() + pos + 4 * blocks;
     for (int by = 0; by < bh; ++by)
         for (int bx = 0; bx < bw; ++bx) {
-            const uint8_t* d = coded.data() + pos + 4 * (size_t(by) * size_t(bw) + size_t(bx));
-            const auto dx = int16_t(uint16_t(d[0] | d[1] << 8)),
-                       dy = int16_t(uint16_t(d[2] | d[3] << 8));
-            const cv::Rect r = block_rect(bx, by, cell);
-            const bool predicted = dx != kNoPrediction || dy != kNoPrediction;
+            const Displacement d = displacements[size_t(by) * size_t(bw) + size_t(bx)];
+            const cv::Rect block = block_rect(bx, by, cell);
+            const bool predicted = d != Displacement{};
             if (predicted) {
-                const cv::Rect from = r + cv::Point(dx, dy);
+                const cv::Rect from = block + cv::Point(d.dx, d.dy);
                 if ((from & cv::Rect({0, 0}, source.size())) != from)
-                    fail("block " + std::to_string(bx) + "," + std::to_string(by) +
-                         " copies from outside the source (displacement " + std::to_string(dx) +
-                         "," + std::to_string(dy) + ")");
+                    r.fail("block " + std::to_string(bx) + "," + std::to_string(by) +
+                           " copies from outside the source (displacement " + std::to_string(d.dx) +
+                           "," + std::to_string(d.dy) + ")");
             }
-            for (int y = r.y; y < r.br().y; ++y) {
-                uint8_t* o = out.ptr<uint8_t>(y) + 3 * r.x;
-                const uint8_t* e = residual + (size_t(y) * size_t(cell.width) + size_t(r.x)) * 3;
+            for (int y = block.y; y < block.br().y; ++y) {
+                uint8_t* o = out.ptr<uint8_t>(y) + 3 * block.x;
+                const uint8_t* e =
+                    residual + (size_t(y) * size_t(cell.width) + size_t(block.x)) * 3;
                 const uint8_t* q =
-                    predicted ? source.ptr<uint8_t>(y + dy) + 3 * (r.x + dx) : nullptr;
-                for (int i = 0; i < 3 * r.width; ++i)
+                    predicted ? source.ptr<uint8_t>(y + d.dy) + 3 * (block.x + d.dx) : nullptr;
+                for (int i = 0; i < 3 * block.width; ++i)
                     o[i] = uint8_t(e[i] + (q ? q[i] : 0));
             }
         }
+    r.done();
     return out;
 }
 

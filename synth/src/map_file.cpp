@@ -16,6 +16,7 @@
 #include <map>
 
 #include "cell_image_coding.hpp"
+#include "map_bytes.hpp"
 #include "tilejet/synth/exemplar.hpp"
 #include "tilejet/synth/internal/corner_colours.hpp"
 #include "tilejet/synth/internal/diamond.hpp"
@@ -23,6 +24,9 @@
 namespace tilejet::synth {
 
 namespace {
+
+using detail::Reader;
+using detail::Writer;
 
 // File layout (all integers little-endian):
 //   header  : magic[8] "TJMAP\r\n\x1a", u32 version, u32 section count, u64 file length,
@@ -67,64 +71,6 @@ struct Section {
     std::string tag;  // four characters
     uint32_t index = 0;
     std::vector<uint8_t> raw;
-};
-
-class Writer {
-  public:
-    std::vector<uint8_t> bytes;
-    void u8s(const void* p, size_t n) {
-        auto b = static_cast<const uint8_t*>(p);
-        bytes.insert(bytes.end(), b, b + n);
-    }
-    template <typename T>
-    void le(T v) {
-        auto u = std::bit_cast<std::make_unsigned_t<T>>(v);
-        for (size_t i = 0; i < sizeof(T); ++i)
-            bytes.push_back(uint8_t(u >> (8 * i)));
-    }
-    void f32(float v) { le(std::bit_cast<uint32_t>(v)); }
-    void f64(double v) { le(std::bit_cast<uint64_t>(v)); }
-};
-
-// Bounds-checked reads; every failure names the file, the section and what was being read.
-class Reader {
-  public:
-    Reader(std::span<const uint8_t> data, std::string where)
-        : data_(data), where_(std::move(where)) {}
-    template <typename T>
-    T le(const char* what) {
-        need(sizeof(T), what);
-        std::make_unsigned_t<T> u = 0;
-        for (size_t i = 0; i < sizeof(T); ++i)
-            u |= std::make_unsigned_t<T>(data_[pos_ + i]) << (8 * i);
-        pos_ += sizeof(T);
-        return std::bit_cast<T>(u);
-    }
-    float f32(const char* what) { return std::bit_cast<float>(le<uint32_t>(what)); }
-    double f64(const char* what) { return std::bit_cast<double>(le<uint64_t>(what)); }
-    std::span<const uint8_t> take(size_t n, const char* what) {
-        need(n, what);
-        auto s = data_.subspan(pos_, n);
-        pos_ += n;
-        return s;
-    }
-    size_t remaining() const { return data_.size() - pos_; }
-    void done() const {
-        if (pos_ != data_.size())
-            throw MapFileError(where_ + ": " + std::to_string(data_.size() - pos_) +
-                               " unexpected bytes at the end");
-    }
-    [[noreturn]] void fail(const std::string& why) const {
-        throw MapFileError(where_ + ": " + why);
-    }
-
-  private:
-    void need(size_t n, const char* what) const {
-        if (data_.size() - pos_ < n) fail(std::string("ends before ") + what);
-    }
-    std::span<const uint8_t> data_;
-    std::string where_;
-    size_t pos_ = 0;
 };
 
 uint32_t crc_of(std::span<const uint8_t> b) {
@@ -424,7 +370,13 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
     };
     std::vector<Entry> entries;
     std::map<std::pair<std::string, uint32_t>, size_t> where_is;
+    // What the sections inflate to (and coded cell images decode to), all together.
     uint64_t raw_total = 0;
+    const auto count_raw = [&](uint64_t bytes_more) {
+        raw_total += bytes_more;
+        if (raw_total > kMaxRawTotal)
+            fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) + " MiB");
+    };
     Reader table(table_bytes, where + " section table");
     for (uint32_t s = 0; s < count; ++s) {
         auto tag_bytes = table.take(4, "section tag");
@@ -455,9 +407,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
                      std::to_string(version) + " (it came with version " +
                      std::to_string(kSourceCodedVersion) + ")");
         }
-        raw_total += e.raw_len;
-        if (raw_total > kMaxRawTotal)
-            fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) + " MiB");
+        count_raw(e.raw_len);
         if (!where_is.emplace(std::pair{e.tag, e.index}, entries.size()).second)
             fail(e.label + " appears twice");
         e.payload = bytes.subspan(size_t(offset), stored);
@@ -494,12 +444,7 @@ TextureMap decode_texture_map(std::span<const uint8_t> bytes, const std::string&
         // Coded cell images decode to their pixels: those count against the limit too.
         if (cw <= uint32_t(kMaxCellSide) && ch <= uint32_t(kMaxCellSide))
             for (const Entry& e : entries)
-                if (e.flags & kFlagSourceCoded) {
-                    raw_total += 8 + uint64_t(cw) * ch * 3;
-                    if (raw_total > kMaxRawTotal)
-                        fail("sections inflate to over " + std::to_string(kMaxRawTotal >> 20) +
-                             " MiB");
-                }
+                if (e.flags & kFlagSourceCoded) count_raw(8 + uint64_t(cw) * ch * 3);
         for (const Entry& e : entries) {
             const bool per_image = e.tag == "CELL" || e.tag == "PATA" || e.tag == "PATB" ||
                                    e.tag == "OVLA" || e.tag == "OVLB";

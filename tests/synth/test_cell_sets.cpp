@@ -969,22 +969,31 @@ TEST_CASE("slab scans and cells up to 320 px get three corner colours by default
           "four, large cells two",
           "[cell_set]") {
     using tilejet::synth::detail::CellSet;
-    // 81 images of 640 px cells hold 33 Mpx: less than an 8192 px slab (67 Mpx), twice a 4096 px
-    // one.
-    CHECK(CellSet::default_corner_colours({640, 640}, {8192, 8192}) == 3);
-    CHECK(CellSet::default_corner_colours({640, 640}, {4096, 4096}) == 2);
-    CHECK(CellSet::default_corner_colours({640, 640}, {5760, 5760}) == 2);
-    CHECK(CellSet::default_corner_colours({640, 640}, {5800, 5800}) == 3);
-    // Large cells (the demo design at 360 dpi) two; up to 320 px three (session 39).
-    CHECK(CellSet::default_corner_colours({480, 480}, {1843, 1843}) == 2);
-    CHECK(CellSet::default_corner_colours({352, 352}, {1024, 1024}) == 2);
-    CHECK(CellSet::default_corner_colours({320, 320}, {512, 512}) == 3);
-    CHECK(CellSet::default_corner_colours({256, 256}, {384, 384}) == 3);
-    CHECK(CellSet::default_corner_colours({256, 256}, {256, 256}) == 3);
-    CHECK(CellSet::default_corner_colours({192, 192}, {192, 192}) == 3);
-    // Sources under 128 px (pattern files): 4.
-    CHECK(CellSet::default_corner_colours({100, 75}, {100, 75}) == 4);
-    CHECK(CellSet::default_corner_colours({128, 128}, {128, 128}) == 3);
+    struct Case {
+        cv::Size cell, source;
+        int colours;
+    };
+    for (const Case& c : {
+             // 81 images of 640 px cells hold 33 Mpx: less than an 8192 px slab (67 Mpx), twice
+             // a 4096 px one.
+             Case{{640, 640}, {8192, 8192}, 3},
+             Case{{640, 640}, {4096, 4096}, 2},
+             Case{{640, 640}, {5760, 5760}, 2},
+             Case{{640, 640}, {5800, 5800}, 3},
+             // Large cells (the demo design at 360 dpi) two; up to 320 px three (session 39).
+             Case{{480, 480}, {1843, 1843}, 2},
+             Case{{352, 352}, {1024, 1024}, 2},
+             Case{{320, 320}, {512, 512}, 3},
+             Case{{256, 256}, {384, 384}, 3},
+             Case{{256, 256}, {256, 256}, 3},
+             Case{{192, 192}, {192, 192}, 3},
+             // Sources under 128 px (pattern files): 4.
+             Case{{100, 75}, {100, 75}, 4},
+             Case{{128, 128}, {128, 128}, 3},
+         }) {
+        INFO("cell " << c.cell << ", source " << c.source);
+        CHECK(CellSet::default_corner_colours(c.cell, c.source) == c.colours);
+    }
     // Built by default, a design of the corpus's size has three.
     BuildParams defaults;
     CHECK(defaults.corner_colours == 0);
