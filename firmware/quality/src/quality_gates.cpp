@@ -7,8 +7,23 @@ namespace tilejet::quality {
 QualityGates quality_gates(const nlohmann::ordered_json& tilejet,
                            const nlohmann::ordered_json& quilt, double patch_coverage) {
     QualityGates g;
-    if (tilejet.contains("periodicity") && tilejet["periodicity"].is_number())
+    if (tilejet.contains("periodicity") && tilejet["periodicity"].is_number()) {
         g.periodicity = tilejet["periodicity"].get<double>();
+    } else {
+        // The wall's highest peak (metrics "periodicity_peak" "value"), or none.
+        const auto peak = [](const nlohmann::ordered_json& method) -> std::optional<double> {
+            if (!method.contains("periodicity_peak")) return std::nullopt;
+            const auto& p = method["periodicity_peak"];
+            if (!p.is_object() || !p.contains("value") || !p["value"].is_number())
+                return std::nullopt;
+            return p["value"].get<double>();
+        };
+        const std::optional<double> own = peak(tilejet), baseline = peak(quilt);
+        if (own && baseline && *baseline > 0) {
+            g.periodicity = *own / *baseline;
+            g.periodicity_against_quilt_wall = true;
+        }
+    }
     const double own = tilejet.value("texture_energy", 0.0);
     const double reference = quilt.value("texture_energy", 0.0);
     if (reference > 0) g.texture_energy_vs_quilt = own / reference;
@@ -23,6 +38,8 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     nlohmann::ordered_json j;
     j["periodicity"] = value(g.periodicity);
     j["periodicity_pass"] = g.periodicity_pass();
+    j["periodicity_reference"] =
+        g.periodicity_against_quilt_wall ? "quilting baseline wall" : "exemplar quilted";
     j["texture_energy_vs_quilt"] = value(g.texture_energy_vs_quilt);
     j["texture_energy_pass"] = g.texture_energy_pass();
     j["grid_lines"] = value(g.grid_lines());

@@ -25,9 +25,13 @@ inline constexpr double kGridLinesLimit = 1.15;
 
 struct QualityGates {
     double limit = kGateLimit;
-    // tilejet's periodicity (already relative to the exemplar quilted to the same size); empty
-    // when the quilted reference has no autocorrelation peak to compare with.
+    // tilejet's periodicity (already relative to the exemplar quilted to the same size). When
+    // that reference has no autocorrelation peak above zero (a slab scan enlarged 32 times is
+    // all slow tone over the window: its highest local maximum -0.05), a ratio to it means
+    // nothing, and tilejet's wall's highest peak is taken against the quilting baseline wall's
+    // instead (`periodicity_against_quilt_wall`); empty when neither has a peak above zero.
     std::optional<double> periodicity;
+    bool periodicity_against_quilt_wall = false;
     // tilejet's texture energy divided by the quilt baseline's; empty if quilt's is zero.
     std::optional<double> texture_energy_vs_quilt;
     // Share of tilejet's wall covered by shown patches: not a gate, but what the gates depend
