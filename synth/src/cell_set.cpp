@@ -368,11 +368,15 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // the first, as images 17 to 32 of one set.
     const size_t combinations = kinds * kinds;
     // Two by default (build.hpp); one, as before twins were
-    // broken, for large cells from a source they copy less than once (slab scans over about
-    // 2600 px): there, with a second variant carrying on the first's account, the wall came
-    // out calmer, the stone's contrast lost (an 8192 px slab's texture energy 1.64 times
-    // quilting's against 1.21 with one; why not yet known).
-    const bool two_by_default = large_ || side <= kLargeCell;
+    // broken, for large cells of three or more colours from a source they copy less than once
+    // (slab scans over about 2600 px): there, with a second variant carrying on the first's
+    // account, the wall came out calmer, the stone's contrast lost (an 8192 px slab's texture
+    // energy 1.64 times quilting's against 1.21 with one; why not yet known). With two colours
+    // one variant leaves a twin across one edge in 16: the 4096 px slab (the demo stone
+    // resampled) showed its white blob in cells one above the other, its correlation at whole
+    // cells 0.082 (two variants: 0.030, texture energy 1.18 -> 1.12 times quilting's; session
+    // 40), where three colours leave one in 81.
+    const bool two_by_default = large_ || side <= kLargeCell || k_ == 2;
     const size_t variants = size_t(params.variants > 0 ? params.variants : two_by_default ? 2 : 1);
     variants_ = int(variants);
     plain_in_four_ = variants == 2 && params.plain_in_four;
