@@ -122,11 +122,13 @@ void print_summary(const quality::ReportPage& page, const std::string& against,
     std::printf("gates (limit %s, 1 = as good as quilting): %s\n",
                 quality::gate_figure(g.limit).c_str(), quality::verdict(g.pass()));
     std::printf("  measured against          %s\n", against.c_str());
+    const std::string reference = g.periodicity_against_quilt_wall
+                                      ? std::string(" (against the ") + g.periodicity_reference() +
+                                            "'s peak: the exemplar quilted has none)"
+                                      : "";
     std::printf("  periodicity               %-8s %s%s\n",
                 quality::gate_figure(g.periodicity).c_str(), quality::verdict(g.periodicity_pass()),
-                g.periodicity_against_quilt_wall
-                    ? " (against the quilting wall's peak: the exemplar quilted has none)"
-                    : "");
+                reference.c_str());
     std::printf("  texture_energy vs quilt   %-8s %s\n",
                 quality::gate_figure(g.texture_energy_vs_quilt).c_str(),
                 quality::verdict(g.texture_energy_pass()));

@@ -369,10 +369,10 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     const size_t combinations = kinds * kinds;
     // Two by default (build.hpp); one, as before twins were
     // broken, for large cells of three or more colours from a source they copy less than once
-    // (slab scans over about 2600 px): there, with a second variant carrying on the first's
-    // account, the wall came out calmer, the stone's contrast lost (an 8192 px slab's texture
-    // energy 1.64 times quilting's against 1.21 with one; why not yet known). With two colours
-    // one variant leaves a twin across one edge in 16: the 4096 px slab (the demo stone
+    // (slab scans over about 5800 px with 640 px cells): there, with a second variant carrying on
+    // the first's account, the wall came out calmer, the stone's contrast lost (an 8192 px slab's
+    // texture energy 1.64 times quilting's against 1.21 with one; why not yet known). With two
+    // colours one variant leaves a twin across one edge in 16: the 4096 px slab (the demo stone
     // resampled) showed its white blob in cells one above the other, its correlation at whole
     // cells 0.082 (two variants: 0.030, texture energy 1.18 -> 1.12 times quilting's; session
     // 40), where three colours leave one in 81.

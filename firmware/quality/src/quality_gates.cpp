@@ -38,8 +38,7 @@ nlohmann::ordered_json gates_json(const QualityGates& g) {
     nlohmann::ordered_json j;
     j["periodicity"] = value(g.periodicity);
     j["periodicity_pass"] = g.periodicity_pass();
-    j["periodicity_reference"] =
-        g.periodicity_against_quilt_wall ? "quilting baseline wall" : "exemplar quilted";
+    j["periodicity_reference"] = g.periodicity_reference();
     j["texture_energy_vs_quilt"] = value(g.texture_energy_vs_quilt);
     j["texture_energy_pass"] = g.texture_energy_pass();
     j["grid_lines"] = value(g.grid_lines());

@@ -152,12 +152,12 @@ std::string gates_html(const ReportPage& page) {
     };
     h << "<h2>Gates: " << verdict(g.pass()) << "</h2><div class='gates'>";
     gate("periodicity", g.periodicity, g.periodicity_pass(),
-         g.periodicity_against_quilt_wall
-             ? "tilejet wall's highest autocorrelation peak, relative to the quilt baseline "
-               "wall's: the exemplar quilted to the same size has no peak above zero to compare "
-               "with"
-             : "tilejet wall's highest autocorrelation peak, relative to the exemplar quilted to "
-               "the same size");
+         std::string("tilejet wall's highest autocorrelation peak, relative to the ") +
+             g.periodicity_reference() +
+             (g.periodicity_against_quilt_wall
+                  ? "'s: the exemplar quilted to the same size has no peak above zero to compare "
+                    "with"
+                  : " to the same size"));
     gate("texture_energy vs quilt", g.texture_energy_vs_quilt, g.texture_energy_pass(),
          "tilejet's texture energy divided by the quilt baseline's, both ways: the wall's "
          "8x8 neighbourhoods against the exemplar's and the exemplar's against the wall's");

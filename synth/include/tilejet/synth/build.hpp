@@ -37,10 +37,10 @@ struct BuildParams {
     // about two cells in five touched a copy of themselves, the motif doubled that the eye and
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
     // 0: default, 2, but 1 for cells over 320 px of three or more corner colours from a source
-    // they copy less than once (slab scans over about 2600 px: an 8192 px slab's texture energy
-    // 1.64 times quilting's with two, 1.21 with one, its wall calmer, the stone's contrast
-    // lost); with two colours two (a 4096 px slab: one left a twin across one edge in 16). By
-    // measurement over four map seeds of the corpus (session 21): two variants brought the worst
+    // they copy less than once (slab scans over about 5800 px with 640 px cells: an 8192 px slab's
+    // texture energy 1.64 times quilting's with two, 1.21 with one, its wall calmer, the stone's
+    // contrast lost); with two colours two (a 4096 px slab: one left a twin across one edge in 16).
+    // By measurement over four map seeds of the corpus (session 21): two variants brought the worst
     // periodicity of each design under the gate on all but marble (before, six failed, up to 3.22).
     // Fine grain (granite, gravel, terrazzo) kept one until session 24, measured when its second
     // variant was copied from what the first left of a 512 px enlargement and cut more grains;

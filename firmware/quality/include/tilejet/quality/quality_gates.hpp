@@ -32,6 +32,10 @@ struct QualityGates {
     // instead (`periodicity_against_quilt_wall`); empty when neither has a peak above zero.
     std::optional<double> periodicity;
     bool periodicity_against_quilt_wall = false;
+    // What periodicity is relative to, as metrics.json, the summary and the page name it.
+    const char* periodicity_reference() const {
+        return periodicity_against_quilt_wall ? "quilting baseline wall" : "exemplar quilted";
+    }
     // tilejet's texture energy divided by the quilt baseline's; empty if quilt's is zero.
     std::optional<double> texture_energy_vs_quilt;
     // Share of tilejet's wall covered by shown patches: not a gate, but what the gates depend
