@@ -459,20 +459,21 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         const int kinds = corner_colours > 0 || lattice
                               ? std::max(corner_colours, 2)
                               : CellSet::default_corner_colours(cell_size, map.source.size());
-        const CellSet set(map.source, source_lab,
-                          {cell_size, kinds, variants, params.seed, threads,
-                           lattice ? &*lattice : nullptr, feather, cuts,
-                           // Not on a lattice: there the plain combinations' extra variants,
-                           // made last, had few lattice windows left that no earlier image
-                           // copied to their places, and the brick wall's texture energy rose
-                           // (1.20 times quilting's at map seed 3 against 1.10 with two), and
-                           // its periodicity was 0.65-0.86 either way.
-                           !lattice,
-                           // Not on a lattice either: a wall of fine synthetic courses read as
-                           // a two-way lattice with wandering frames (tests/synth/
-                           // test_lattice.cpp), and the corpus's brick wall kept its lines
-                           // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
-                           params.wandering_frames && !lattice, params.smooth_steps});
+        const CellSet set(
+            map.source, source_lab,
+            {cell_size, kinds, variants, params.seed, threads, lattice ? &*lattice : nullptr,
+             feather, cuts,
+             // Not on a lattice: there the plain combinations' extra variants,
+             // made last, had few lattice windows left that no earlier image
+             // copied to their places, and the brick wall's texture energy rose
+             // (1.20 times quilting's at map seed 3 against 1.10 with two), and
+             // its periodicity was 0.65-0.86 either way.
+             !lattice,
+             // Not on a lattice either: a wall of fine synthetic courses read as
+             // a two-way lattice with wandering frames (tests/synth/
+             // test_lattice.cpp), and the corpus's brick wall kept its lines
+             // (1.16 / 1.37 at map seed 1 against 1.21 / 1.38 straight).
+             params.wandering_frames && !lattice, params.smooth_steps, params.weigh_tone_steps});
         map.corner_colours = kinds, map.variants = set.variants();
         // A set's images copy their source block by block: stored as such, a third of the bytes.
         map.cell_storage = TextureMap::CellStorage::against_source;

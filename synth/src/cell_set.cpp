@@ -34,6 +34,23 @@ constexpr int kSearchWindow = 384;
 constexpr int kCoarseSide = 1024;
 // Each block takes the best seam of this many best-matching windows.
 constexpr size_t kCutCandidates = 6;
+// What a unit of tone step (seam_tone.hpp: CIELab, blurred over a fortieth of the cell, the
+// tone a person sees from a few steps back, as `tilejet eval`'s lines along the cell grid
+// measure it) costs against a unit of seam cost when a block picks its window. Measured on the
+// corpus at map seeds 1 and 2 (session 41; lines along the cell grid without -> with): slate
+// 1.34 -> 1.25 at both, limestone 1.22 -> 1.19 and 1.21 -> 1.20, marble 1.18 -> 1.15 at both,
+// wood 1.76 -> 1.69 and 1.67 -> 1.68, granite 1.17 -> 1.20 and 1.19 -> 1.20; texture energy
+// within 0.1 of before, all passing. 1 did about as well, 10 no better: the six windows are
+// what there is to choose from (twelve: limestone 1.13, granite 1.12, a build 60 % longer).
+// Not on a lattice: the brick wall's lines rose (1.38 -> 1.45, 1.41 -> 1.43), its grout
+// lines being the design's steps of tone. Nor for cells over kLargeCell: the demo design at
+// 360 dpi, whose blocks weigh conspicuous features and judge cuts by their squared cost, went
+// from 0.65 / 0.95 / 1.05 to 1.08 / 0.94 / 1.20 (periodicity / texture energy / lines), the
+// 4096 px slab from 0.53 / 1.12 / 1.32 to 0.57 / 1.17 / 1.30. Nor where cuts are blended
+// (exemplars enlarged twice or more): a window with a smaller tone step but a costlier cut
+// left sharper steps in the soft stone (tests/synth/test_cell_sets.cpp, the demo design's
+// middle enlarged 4 times: steps sharper than its own 0.1 % 0.13 -> 0.18 of the hard cuts').
+constexpr double kToneStepCost = 3;
 // Images are made this many at a time (see the constructor): images of one batch do not see
 // each other's blocks, and with 16 images in batches of 8, the demo design's images took the
 // same least-used source over and over (periodicity 1.26, 1.07 in batches of 2).
@@ -133,7 +150,9 @@ struct Canvas {
     // The source made smaller, for searches coarse to fine (OffsetSearch::coarse), or none.
     const cv::Mat* coarse = nullptr;
     int coarse_factor = 1;
-    int feather = 0;                    // CellSetParams::seam_feather
+    int feather = 0;  // CellSetParams::seam_feather
+    // The source's tone, against which each block's cut is judged for its tone step too, or none.
+    const SourceTone* tone = nullptr;
     CutLevels cuts = CutLevels::Whole;  // CellSetParams::cuts
     // What each pixel shows most of (CV_32S, an index into `layers`; -1 nothing yet): where the
     // tone steps between copies lie (layer_steps.hpp).
@@ -221,6 +240,15 @@ KeptDepths kept_depths(int w, int c, int feather, bool wandering) {
     return {least, std::max(least, w), std::max(least, room), c + 2};
 }
 
+// Whether a set of K `k` for `cell` from `source` has large cells: over kLargeCell, from a
+// source its K^4 images copy more than once (the demo design at 360 dpi covers its 1843 px
+// source twice, an 8192 px slab a tenth of its source).
+bool large_cells(int k, cv::Size cell, cv::Size source) {
+    const double reuse =
+        double(k) * k * k * k * cell.width * cell.height / (double(source.width) * source.height);
+    return std::min(cell.width, cell.height) > kLargeCell && reuse >= 1;
+}
+
 }  // namespace
 
 cv::Size CellSet::smallest_source(cv::Size cell) {
@@ -240,6 +268,12 @@ int CellSet::default_corner_colours(cv::Size cell, cv::Size source) {
     if (slab_scan(cell, source)) return 3;
     if (std::min(source.width, source.height) < kSmallSource / 2) return 4;
     return std::min(cell.width, cell.height) <= kLargeCell ? 3 : 2;
+}
+
+int CellSet::default_variants(int corner_colours, cv::Size cell, cv::Size source) {
+    const bool two = large_cells(corner_colours, cell, source) ||
+                     std::min(cell.width, cell.height) <= kLargeCell || corner_colours == 2;
+    return two ? 2 : 1;
 }
 
 bool CellSet::slab_scan(cv::Size cell, cv::Size source) {
@@ -276,12 +310,8 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     //  - the corner blocks are small cores (a third of the frame): whole 2w blocks were cut
     //    round as squares, the same square at a third of all vertices.
 
-    // How many times over the set's images cover the source: the demo design at 360 dpi covers
-    // its 1843 px source twice, an 8192 px slab a tenth of its source. Per variant: each keeps
-    // its own account of what it copied (below).
-    const double reuse =
-        double(k_) * k_ * k_ * k_ * cw_ * ch_ / (double(source_lab.cols) * source_lab.rows);
-    large_ = side > kLargeCell && reuse >= 1;
+    // Per variant: each keeps its own account of what it copied (below).
+    large_ = large_cells(k_, params.cell, source_lab.size());
     if (params.lattice) {
         // On a lattice copies move only by lattice translations: the cut needs the room of
         // blocks half a cell across overlapping by half a block to follow a course or a grout
@@ -339,6 +369,9 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
             (std::max(source_lab.cols, source_lab.rows) + kCoarseSide - 1) / kCoarseSide;
         coarse_lab_ = coarse_source(source_lab, coarse_factor_);
     }
+    if (params.weigh_tone_steps && !params.lattice && side <= kLargeCell &&
+        params.seam_feather == 0)
+        tone_ = SourceTone(source_lab, std::max(1.0, side / 40.0));
     choose_corner_blocks(z2);
     const size_t kinds = size_t(k_) * size_t(k_);
     horizontal_.resize(kinds), vertical_.resize(kinds);
@@ -376,8 +409,9 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
     // resampled) showed its white blob in cells one above the other, its correlation at whole
     // cells 0.082 (two variants: 0.030, texture energy 1.18 -> 1.12 times quilting's; session
     // 40), where three colours leave one in 81.
-    const bool two_by_default = large_ || side <= kLargeCell || k_ == 2;
-    const size_t variants = size_t(params.variants > 0 ? params.variants : two_by_default ? 2 : 1);
+    const size_t variants =
+        size_t(params.variants > 0 ? params.variants
+                                   : default_variants(k_, params.cell, source_lab.size()));
     variants_ = int(variants);
     plain_in_four_ = variants == 2 && params.plain_in_four;
     images_.resize(cell_image_count(
@@ -678,12 +712,22 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
     const auto cost_of = [&](const Cut& c) {
         return canvas.conspicuous ? c.mean_square_cost : c.mean_cost;
     };
+    const cv::Mat old_tone = canvas.tone && candidates.size() > 1
+                                 ? known_tone(canvas.lab, canvas.known, rect, canvas.tone->sigma())
+                                 : cv::Mat();
+    const auto score = [&](const Cut& c, cv::Point corner) {
+        if (old_tone.empty()) return cost_of(c);
+        return cost_of(c) + kToneStepCost * seam_tone_step(c, old_tone, *canvas.tone, corner,
+                                                           canvas.conspicuous != nullptr);
+    };
     Cut cut;
     cv::Rect from;
+    double best = 0;
     for (const cv::Point candidate : candidates) {
         const cv::Rect window(candidate, rect.size());
         Cut c = min_cut(canvas.lab(rect), source_lab(window), pins, canvas.cuts);
-        if (from.empty() || cost_of(c) < cost_of(cut)) cut = std::move(c), from = window;
+        const double s = score(c, candidate);
+        if (from.empty() || s < best) cut = std::move(c), from = window, best = s;
     }
     canvas.placed.push_back({rect, from.tl(), !matching || !fallback});
     const int layer = int(canvas.layers.size());
@@ -796,6 +840,7 @@ cv::Mat CellSet::make_strip(bool horizontal, uint32_t a, uint32_t b, const cv::M
         canvas.conspicuous = &conspicuous_;
         canvas.wide_search = true;
     }
+    if (!tone_.empty()) canvas.tone = &tone_;
     if (!coarse_lab_.empty()) canvas.coarse = &coarse_lab_, canvas.coarse_factor = coarse_factor_;
     // The strip's top-left pixel lies (w, w) before its first vertex, a lattice point.
     quilt_area(canvas, cv::Rect({0, 0}, size), {strip_block_, strip_block_}, strip_overlap_,
@@ -895,6 +940,7 @@ cv::Mat CellSet::make_image(size_t index, const std::vector<Placement>& avoid, c
         canvas.conspicuous_first_charged = false;
         canvas.wide_search = true;
     }
+    if (!tone_.empty()) canvas.tone = &tone_;
     if (!coarse_lab_.empty()) canvas.coarse = &coarse_lab_, canvas.coarse_factor = coarse_factor_;
     Rng rng(hash_combine(hash_combine(params_.seed, kImageStream), index));
     quilt_area(canvas, cv::Rect(0, 0, cw_, ch_), block_, overlap_, source_rgb_, source_lab_,

@@ -26,6 +26,7 @@
 
 #include "graph_cut.hpp"
 #include "lattice_alignment.hpp"
+#include "seam_tone.hpp"
 #include "strip_continuation.hpp"
 
 namespace tilejet::synth::detail {
@@ -71,6 +72,10 @@ struct CellSetParams {
     // The tone steps where a cell image's blocks cut into its frame strips spread over its
     // insides (layer_steps.hpp).
     bool smooth_steps = false;
+    // Off a lattice, for cells up to kLargeCell and cuts not blended, each block takes, of its
+    // best-matching windows, the one whose cut leaves the least tone step besides the least seam
+    // cost (seam_tone.hpp). False: by seam cost alone, as sets were made before session 41.
+    bool weigh_tone_steps = true;
 };
 
 class CellSet {
@@ -104,6 +109,10 @@ class CellSet {
     // 1.52 with 168, 1.10 with 520 (session 38).
     static int default_corner_colours(cv::Size cell, cv::Size source);
     static constexpr int kSmallSource = 256;
+    // Variants per combination by default (CellSetParams::variants 0) for K `corner_colours`:
+    // 2, but 1 for cells over kLargeCell of three or more colours from a source their set
+    // copies less than once (the constructor says why).
+    static int default_variants(int corner_colours, cv::Size cell, cv::Size source);
 
     size_t size() const { return images_.size(); }
     int variants() const { return variants_; }
@@ -161,6 +170,7 @@ class CellSet {
     // scans, kCoarseSide), or empty.
     cv::Mat coarse_lab_;
     int coarse_factor_ = 1;
+    SourceTone tone_;  // what blocks' tone steps are measured against, or empty
     std::vector<cv::Point> corner_source_;  // per colour: the source of its block's top-left
     // Per edge kind a + K b, R,G,B: horizontal strips (Cx + 2w) x 2w from the left vertex a's
     // block to the right vertex b's, vertical ones 2w x (Cy + 2w) from top a to bottom b.

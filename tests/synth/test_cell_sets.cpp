@@ -495,6 +495,30 @@ TEST_CASE("by default a set has two variants whatever the grain, one only for sl
     CHECK(slab.cell_images.size() == 36);
 }
 
+TEST_CASE("sets of three colours or more keep one variant only for large cells copied less than once",
+          "[cell_set][slab]") {
+    // The rule alone (CellSet::default_variants), without the minutes a set of 81 images of
+    // over 320 px takes to build: one variant where K^4 cells of the size copy less than the
+    // source, over kLargeCell (320 px), with three colours or more.
+    using tilejet::synth::detail::CellSet;
+    // Cells up to 320 px: two, whatever the source.
+    CHECK(CellSet::default_variants(3, {320, 320}, {8192, 8192}) == 2);
+    CHECK(CellSet::default_variants(3, {256, 256}, {384, 384}) == 2);
+    // Two colours: two, whatever the cell and the source (the 4096 px slab's twins, session 40).
+    CHECK(CellSet::default_variants(2, {640, 640}, {4096, 4096}) == 2);
+    CHECK(CellSet::default_variants(2, {640, 640}, {8192, 8192}) == 2);
+    // Three colours of 640 px: 81 x 640^2 px is the source of 5760^2; from it on, copied less
+    // than once, one variant (an 8192 px slab lost the stone's contrast with two).
+    CHECK(CellSet::default_variants(3, {640, 640}, {1843, 1843}) == 2);
+    CHECK(CellSet::default_variants(3, {640, 640}, {5760, 5760}) == 2);
+    CHECK(CellSet::default_variants(3, {640, 640}, {5761, 5761}) == 1);
+    CHECK(CellSet::default_variants(3, {640, 640}, {8192, 8192}) == 1);
+    CHECK(CellSet::default_variants(3, {640, 320}, {8192, 8192}) == 2);  // its shorter side
+    // Four colours: 256 images of 640 px copy an 8192 px source more than once.
+    CHECK(CellSet::default_variants(4, {640, 640}, {8192, 8192}) == 2);
+    CHECK(CellSet::default_variants(4, {640, 640}, {10241, 10241}) == 1);
+}
+
 TEST_CASE("the two variants of a small source's set differ, the first as one variant builds it",
           "[cell_set]") {
     // A source no larger than a block search's window is searched whole: a second variant with

@@ -85,6 +85,12 @@ struct BuildParams {
     // spread over its insides in the gradient domain: the lines along the cell grid go, and
     // the copies' exactness with them (texture energy rises; README, session 34).
     bool smooth_steps = false;
+    // In a set of cells up to 320 px off a lattice, from an exemplar enlarged less than twice
+    // (cuts not blended), each block takes, of its best-matching
+    // windows, the one whose cut leaves the least step of tone besides the least seam cost
+    // (seam_tone.hpp; session 41: slate's lines along the grid 1.34 -> 1.25). False: by seam
+    // cost alone, as before; kept to measure against.
+    bool weigh_tone_steps = true;
     // In a set off a lattice and without other patches, frame patches kept per edge of each
     // cell image: the strip along the edge continued into the cell from the source it was cut
     // from, to a cut of its own (docs/design.md section 9, strip_continuation.hpp). Shown by
