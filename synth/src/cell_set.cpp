@@ -50,6 +50,9 @@ constexpr size_t kCutCandidates = 6;
 // (exemplars enlarged twice or more): a window with a smaller tone step but a costlier cut
 // left sharper steps in the soft stone (tests/synth/test_cell_sets.cpp, the demo design's
 // middle enlarged 4 times: steps sharper than its own 0.1 % 0.13 -> 0.18 of the hard cuts').
+// Nor from sources under kSmallSource (pattern files), whose blocks have few windows to choose
+// from: a 128 px granite crop's set correlated 1.29 times its quilt's peak, over the gate
+// (tests/quality/test_periodicity.cpp).
 constexpr double kToneStepCost = 3;
 // Images are made this many at a time (see the constructor): images of one batch do not see
 // each other's blocks, and with 16 images in batches of 8, the demo design's images took the
@@ -370,7 +373,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         coarse_lab_ = coarse_source(source_lab, coarse_factor_);
     }
     if (params.weigh_tone_steps && !params.lattice && side <= kLargeCell &&
-        params.seam_feather == 0)
+        params.seam_feather == 0 && std::min(source_lab.cols, source_lab.rows) >= kSmallSource)
         tone_ = SourceTone(source_lab, std::max(1.0, side / 40.0));
     choose_corner_blocks(z2);
     const size_t kinds = size_t(k_) * size_t(k_);
@@ -717,8 +720,7 @@ void quilt_block(Canvas& canvas, const cv::Rect& rect, int overlap, const cv::Ma
                                  : cv::Mat();
     const auto score = [&](const Cut& c, cv::Point corner) {
         if (old_tone.empty()) return cost_of(c);
-        return cost_of(c) + kToneStepCost * seam_tone_step(c, old_tone, *canvas.tone, corner,
-                                                           canvas.conspicuous != nullptr);
+        return cost_of(c) + kToneStepCost * seam_tone_step(c, old_tone, *canvas.tone, corner);
     };
     Cut cut;
     cv::Rect from;

@@ -72,7 +72,8 @@ struct CellSetParams {
     // The tone steps where a cell image's blocks cut into its frame strips spread over its
     // insides (layer_steps.hpp).
     bool smooth_steps = false;
-    // Off a lattice, for cells up to kLargeCell and cuts not blended, each block takes, of its
+    // Off a lattice, for cells up to kLargeCell from a source of kSmallSource or more and cuts
+    // not blended, each block takes, of its
     // best-matching windows, the one whose cut leaves the least tone step besides the least seam
     // cost (seam_tone.hpp). False: by seam cost alone, as sets were made before session 41.
     bool weigh_tone_steps = true;

@@ -34,7 +34,7 @@ cv::Mat known_tone(const cv::Mat& lab, const cv::Mat& known, const cv::Rect& rec
 }
 
 double seam_tone_step(const Cut& cut, const cv::Mat& old_tone, const SourceTone& tone,
-                      cv::Point window_corner, bool squared) {
+                      cv::Point window_corner) {
     const int w = old_tone.cols, h = old_tone.rows;
     const auto taken = [&](int x, int y) {
         return cut.take_new[size_t(y) * size_t(w) + size_t(x)];
@@ -49,8 +49,7 @@ double seam_tone_step(const Cut& cut, const cv::Mat& old_tone, const SourceTone&
             if (!by_old) continue;
             const cv::Vec3f d =
                 tone.at(window_corner + cv::Point(x, y)) - old_tone.at<cv::Vec3f>(y, x);
-            const double d2 = double(d.dot(d));
-            sum += squared ? d2 : std::sqrt(d2);
+            sum += std::sqrt(double(d.dot(d)));
             ++seam;
         }
     return seam > 0 ? sum / double(seam) : 0.0;

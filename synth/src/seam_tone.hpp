@@ -40,9 +40,9 @@ cv::Mat known_tone(const cv::Mat& lab, const cv::Mat& known, const cv::Rect& rec
 
 // The mean tone step across `cut`: over the pixels on its new side next to one on its old side,
 // the CIELab distance between `old_tone` (known_tone() of the window) and the source's tone at
-// the same pixel of the copy whose top-left pixel comes from `window_corner`. Squared when
-// `squared`, to go with Cut::mean_square_cost. 0 for a cut that leaves no seam.
+// the same pixel of the copy whose top-left pixel comes from `window_corner`. 0 for a cut that
+// leaves no seam.
 double seam_tone_step(const Cut& cut, const cv::Mat& old_tone, const SourceTone& tone,
-                      cv::Point window_corner, bool squared);
+                      cv::Point window_corner);
 
 }  // namespace tilejet::synth::detail
