@@ -85,8 +85,8 @@ struct BuildParams {
     // spread over its insides in the gradient domain: the lines along the cell grid go, and
     // the copies' exactness with them (texture energy rises; README, session 34).
     bool smooth_steps = false;
-    // In a set of cells up to 320 px off a lattice, from an exemplar enlarged less than twice
-    // (cuts not blended), each block takes, of its best-matching
+    // In a set of cells up to 320 px off a lattice, from a source of 256 px or more enlarged
+    // less than twice (cuts not blended), each block takes, of its best-matching
     // windows, the one whose cut leaves the least step of tone besides the least seam cost
     // (seam_tone.hpp; session 41: slate's lines along the grid 1.34 -> 1.25). False: by seam
     // cost alone, as before; kept to measure against.
