@@ -72,12 +72,15 @@ class HttpServer {
     MHD_Result on_request(MHD_Connection* c, Exchange& ex, const char* upload, size_t* upload_size);
     void begin(MHD_Connection* c, Exchange& ex);
     MHD_Result answer(MHD_Connection* c, Exchange& ex);
+    // A queued request's turn in its lane: its handler, unless its connection was cut meanwhile.
+    void run_queued(Exchange& ex);
     void run_handler(Exchange& ex);
     void housekeep();
     void enforce_deadlines(Clock::time_point now);
     void feed_streams(bool ending);
     // Closes a connection (of `address`, or of any when empty) that has no request under way,
-    // the likeliest hostile first; false when there is none.
+    // or a flooding client's queued request, the likeliest hostile first; false when there is
+    // none.
     bool evict_idle(const std::string& address);
 
     const Router& router_;
