@@ -75,6 +75,16 @@ api::AccessSettings small_limits() {
     return a;
 }
 
+// Limits for a flood of wrong sign-ins as olga: never locked out, each password checked against
+// a hash of `rounds` (slow, as on a line).
+api::AccessSettings sign_in_flood(int rounds) {
+    api::AccessSettings a = small_limits();
+    a.sign_in.failures_per_address = 1000;
+    a.sign_in.failures_per_user = 1000;
+    a.users[0].password_hash = api::hash_password("olga-pw-123", rounds);
+    return a;
+}
+
 // The worst time GET /api/status took over `rounds` tries as the signed-in operator.
 std::chrono::milliseconds worst_status(Client& c, const httplib::Headers& h, int rounds = 5) {
     std::chrono::milliseconds worst{0};
@@ -211,12 +221,8 @@ TEST_CASE("a body that stops arriving is cut at the body deadline", "[api][limit
 TEST_CASE("a flood of sign-ins waits on its own lane: the status is answered meanwhile",
           "[api][limits]") {
     FakeBackend backend;
-    api::AccessSettings a = small_limits();
-    a.sign_in.failures_per_address = 1000;
-    a.sign_in.failures_per_user = 1000;
     // Slow hashes, as on a line: each sign-in takes a while.
-    a.users[0].password_hash = api::hash_password("olga-pw-123", 200000);
-    api::ApiServer server(backend, "127.0.0.1", 0, a);
+    api::ApiServer server(backend, "127.0.0.1", 0, sign_in_flood(200000));
     Client operator_client(server.port());
     const auto h = operator_client.session("olga");
     std::vector<std::thread> flood;
@@ -267,13 +273,10 @@ TEST_CASE(
     "a new client from that address",
     "[api][limits]") {
     FakeBackend backend;
-    api::AccessSettings a = small_limits();
-    a.sign_in.failures_per_address = 1000;
-    a.sign_in.failures_per_user = 1000;
-    a.limits.connections_per_address = 8;
     // Slow hashes (about 0.3 s) on the sign-in lane's one thread: the flood's requests wait
     // there, none idle, none answered before the operator comes.
-    a.users[0].password_hash = api::hash_password("olga-pw-123", 1500000);
+    api::AccessSettings a = sign_in_flood(1500000);
+    a.limits.connections_per_address = 8;
     api::ApiServer server(backend, "127.0.0.1", 0, a);
     Client operator_client(server.port());
     const auto h = operator_client.session("olga");
