@@ -209,10 +209,11 @@ void count_uses(cv::Mat& usage, const std::vector<Placement>& blocks) {
     count_uses(usage, blocks, cv::Rect({0, 0}, usage.size()));
 }
 
-// Half the width of a strip: the frame's share of each cell along an edge (why a tenth: the
-// constructor).
-int frame_width(cv::Size cell) {
-    return std::max(3, std::min(cell.width, cell.height) / 10);
+// Half the width of a strip: the frame's share of each cell along an edge, a tenth (why: the
+// constructor) or `parts`.
+constexpr int kFrameParts = 10;
+int frame_width(cv::Size cell, int parts = kFrameParts) {
+    return std::max(3, std::min(cell.width, cell.height) / parts);
 }
 
 // How far into the cell, of the w px of strip along each edge, a cell keeps what its strip shows
@@ -252,6 +253,27 @@ bool large_cells(int k, cv::Size cell, cv::Size source) {
     return std::min(cell.width, cell.height) > kLargeCell && reuse >= 1;
 }
 
+// Strips an eighth of the cell each side instead of a tenth, for sets of four colours or more of
+// cells up to kLargeCell off a lattice, from a source of kSmallSource or more that holds an
+// inside block and the wider frame. The cuts of a cell's blocks into its strips then wander
+// over a deeper band, and the line of strip between the cuts on either side of a border shows
+// less (sessions 40-41: with three colours, a sixth brought lines along the grid down on
+// every design tried, but a strip at one edge in nine was more of the wall: granite's
+// periodicity 0.69 -> 1.40). With four, a strip shows at one edge in 16. The corpus at map
+// seeds 1 and 2 against three colours and a tenth (session 42; lines / texture energy against
+// quilting's): granite 1.20 -> 1.14, limestone 1.19 / 1.11 -> 1.12 / 1.15 and 1.20 / 1.08 ->
+// 1.19 / 1.16, slate 1.25 -> 1.21 and 1.24, wood 1.69 -> 1.54, 1.68 -> 1.65, marble 1.15 ->
+// 1.16 and 1.15. A sixth: slate 1.14 and 1.22, wood 1.45 and 1.47, granite 1.11, but
+// limestone's texture energy 1.23 and 1.21 (over its gate); a seventh: limestone 1.21.
+constexpr int kWideFrameParts = 8;
+bool wide_frame(int k, cv::Size cell, cv::Size source, bool lattice) {
+    const int w = frame_width(cell, kWideFrameParts);
+    return k >= 4 && !lattice && std::min(cell.width, cell.height) <= kLargeCell &&
+           std::min(source.width, source.height) >= CellSet::kSmallSource &&
+           source.width >= cell.width * 3 / 4 + 2 * w + 2 &&
+           source.height >= cell.height * 3 / 4 + 2 * w + 2;
+}
+
 }  // namespace
 
 cv::Size CellSet::smallest_source(cv::Size cell) {
@@ -267,15 +289,26 @@ cv::Size CellSet::smallest_source(cv::Size cell) {
             std::max(8, cell.height * 3 / 4) + 2 * w + 2};
 }
 
+int CellSet::frame_for(int corner_colours, cv::Size cell, cv::Size source, bool lattice) {
+    return frame_width(
+        cell, wide_frame(corner_colours, cell, source, lattice) ? kWideFrameParts : kFrameParts);
+}
+
 int CellSet::default_corner_colours(cv::Size cell, cv::Size source) {
     if (slab_scan(cell, source)) return 3;
-    if (std::min(source.width, source.height) < kSmallSource / 2) return 4;
-    return std::min(cell.width, cell.height) <= kLargeCell ? 3 : 2;
+    const int source_side = std::min(source.width, source.height);
+    if (source_side < kSmallSource / 2) return 4;
+    if (std::min(cell.width, cell.height) > kLargeCell) return 2;
+    return source_side >= kSmallSource && source_side < 2 * kSmallSource ? 4 : 3;
 }
 
 int CellSet::default_variants(int corner_colours, cv::Size cell, cv::Size source) {
-    const bool two = large_cells(corner_colours, cell, source) ||
-                     std::min(cell.width, cell.height) <= kLargeCell || corner_colours == 2;
+    const int side = std::min(cell.width, cell.height);
+    if (corner_colours >= 4 && side <= kLargeCell &&
+        std::min(source.width, source.height) >= kSmallSource)
+        return 1;
+    const bool two =
+        large_cells(corner_colours, cell, source) || side <= kLargeCell || corner_colours == 2;
     return two ? 2 : 1;
 }
 
@@ -335,7 +368,7 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
         overlap_ = std::max(
             2, std::min(block_.width, block_.height) / (large_ ? kLargeCellOverlapParts : 4));
     }
-    w_ = frame_width(params.cell);
+    w_ = frame_for(k_, params.cell, source_rgb.size(), params.lattice != nullptr);
     // One block a strip where the source has room for it (smallest_source()).
     strip_block_ =
         std::min(std::max(cw_, ch_) + 2 * w_, std::min(source_rgb.cols, source_rgb.rows) - 2);

@@ -46,7 +46,8 @@ struct CellSetParams {
     // V images per combination, K^4 V in all (corner_colours.hpp). Each variant is quilted as
     // the first, with the same frame (its corners' strips) and its own inside. 0: 2 for cells up
     // to kLargeCell and for large cells; 1 for cells over kLargeCell from a source they copy
-    // less than once (build.hpp says why).
+    // less than once (build.hpp says why), and for four colours of cells up to kLargeCell from
+    // a source of kSmallSource or more (default_variants()).
     int variants = 0;
     uint64_t seed = 1;
     int threads = 0;
@@ -91,6 +92,10 @@ class CellSet {
     // colours (one variant) still copy less than the source (from about 5800 px with 640 px
     // cells).
     static bool slab_scan(cv::Size cell, cv::Size source);
+    // Half the width of a set's strips (its frame, px): a tenth of the cell, an eighth for four
+    // colours or more of cells up to kLargeCell off a lattice from a source of kSmallSource or
+    // more that holds an inside block and that frame (the constructor says why).
+    static int frame_for(int corner_colours, cv::Size cell, cv::Size source, bool lattice);
     // Corner colours K by default (off a lattice, which keeps 2: build.cpp). 3 for slab scans:
     // 16 images held a tenth of an 8192 px slab, and its wall missed most of the stone's
     // variety. 3 for cells up to kLargeCell, the designs of a few hundred px at their own
@@ -107,12 +112,18 @@ class CellSet {
     // Larger cells (the demo design at 360 dpi, slab scans up to about 5800 px) keep 2: their
     // sources are several cells across, and 168 images of 640 px would take four minutes.
     // 4 for sources under 128 px (pattern files): a 64 px granite crop 2.37 with 36 images,
-    // 1.52 with 168, 1.10 with 520 (session 38).
+    // 1.52 with 168, 1.10 with 520 (session 38). And since session 42, 4 (one variant, 256
+    // images, strips an eighth of the cell: frame_for()) for cells up to kLargeCell from
+    // sources of 256-511 px, the corpus's designs and the demo design at 100 dpi: lines along
+    // the cell grid fainter on granite, limestone, slate and wood, the demo design's
+    // periodicity 1.54 -> 1.21. From 512 px on, 3: four took the 512 px bench exemplar (320 px
+    // cells) 66 s to build, over issue 16's minute (three: 37 s).
     static int default_corner_colours(cv::Size cell, cv::Size source);
     static constexpr int kSmallSource = 256;
     // Variants per combination by default (CellSetParams::variants 0) for K `corner_colours`:
     // 2, but 1 for cells over kLargeCell of three or more colours from a source their set
-    // copies less than once (the constructor says why).
+    // copies less than once (the constructor says why), and 1 for four colours or more of cells
+    // up to kLargeCell from sources of kSmallSource or more (a twin shows one time in 256).
     static int default_variants(int corner_colours, cv::Size cell, cv::Size source);
 
     size_t size() const { return images_.size(); }

@@ -495,8 +495,9 @@ TEST_CASE("by default a set has two variants whatever the grain, one only for sl
     CHECK(slab.cell_images.size() == 36);
 }
 
-TEST_CASE("sets of three colours or more keep one variant only for large cells copied less than once",
-          "[cell_set][slab]") {
+TEST_CASE(
+    "sets of three colours or more keep one variant only for large cells copied less than once",
+    "[cell_set][slab]") {
     // The rule alone (CellSet::default_variants), without the minutes a set of 81 images of
     // over 320 px takes to build: one variant where K^4 cells of the size copy less than the
     // source, over kLargeCell (320 px), with three colours or more.
@@ -517,6 +518,28 @@ TEST_CASE("sets of three colours or more keep one variant only for large cells c
     // Four colours: 256 images of 640 px copy an 8192 px source more than once.
     CHECK(CellSet::default_variants(4, {640, 640}, {8192, 8192}) == 2);
     CHECK(CellSet::default_variants(4, {640, 640}, {10241, 10241}) == 1);
+    // Four colours of cells up to 320 px (the corpus's designs): one, 256 images, where a twin
+    // shows one time in 256; but two (520 images) from sources under 256 px (pattern files).
+    CHECK(CellSet::default_variants(4, {256, 256}, {384, 384}) == 1);
+    CHECK(CellSet::default_variants(4, {320, 320}, {256, 256}) == 1);
+    CHECK(CellSet::default_variants(4, {64, 64}, {255, 255}) == 2);
+    CHECK(CellSet::default_variants(4, {64, 64}, {100, 100}) == 2);
+}
+
+TEST_CASE(
+    "four-colour sets of cells up to 320 px have strips an eighth of the cell, where the "
+    "source holds them",
+    "[cell_set]") {
+    using tilejet::synth::detail::CellSet;
+    // An eighth with four colours, where the source (256 px or more) holds an inside block
+    // (three quarters of the cell) and the frame; else a tenth.
+    CHECK(CellSet::frame_for(4, {256, 256}, {384, 384}, false) == 32);
+    CHECK(CellSet::frame_for(3, {256, 256}, {384, 384}, false) == 25);
+    CHECK(CellSet::frame_for(4, {256, 256}, {384, 384}, true) == 25);       // a lattice
+    CHECK(CellSet::frame_for(4, {256, 256}, {256, 256}, false) == 25);      // 192 + 64 + 2 > 256
+    CHECK(CellSet::frame_for(4, {200, 200}, {256, 256}, false) == 25);      // 150 + 50 + 2 <= 256
+    CHECK(CellSet::frame_for(4, {64, 64}, {100, 100}, false) == 6);         // a pattern file
+    CHECK(CellSet::frame_for(4, {640, 640}, {10241, 10241}, false) == 64);  // large cells
 }
 
 TEST_CASE("the two variants of a small source's set differ, the first as one variant builds it",
@@ -959,9 +982,10 @@ TEST_CASE("a cell keeps only the outer part of its frame, its own blocks take th
     }
 }
 
-TEST_CASE("with steps smoothed, a set is still seamless for every pair and its borders are the "
-          "same pixels",
-          "[cell_set]") {
+TEST_CASE(
+    "with steps smoothed, a set is still seamless for every pair and its borders are the "
+    "same pixels",
+    "[cell_set]") {
     BuildParams p;
     p.corner_colours = 2;
     p.variants = 2;
@@ -992,9 +1016,10 @@ TEST_CASE("with steps smoothed, a set is still seamless for every pair and its b
     CHECK(changed > plain.cell_images.size() / 2);
 }
 
-TEST_CASE("slab scans and cells up to 320 px get three corner colours by default, pattern files "
-          "four, large cells two",
-          "[cell_set]") {
+TEST_CASE(
+    "by default slab scans get three corner colours, cells up to 320 px four from sources "
+    "of 256-511 px (else three), pattern files four, large cells two",
+    "[cell_set]") {
     using tilejet::synth::detail::CellSet;
     struct Case {
         cv::Size cell, source;
@@ -1007,13 +1032,16 @@ TEST_CASE("slab scans and cells up to 320 px get three corner colours by default
              Case{{640, 640}, {4096, 4096}, 2},
              Case{{640, 640}, {5760, 5760}, 2},
              Case{{640, 640}, {5800, 5800}, 3},
-             // Large cells (the demo design at 360 dpi) two; up to 320 px three (session 39).
+             // Large cells (the demo design at 360 dpi) two; up to 320 px four from sources of
+             // 256 px or more (session 42; three since session 39), three from smaller ones.
              Case{{480, 480}, {1843, 1843}, 2},
              Case{{352, 352}, {1024, 1024}, 2},
-             Case{{320, 320}, {512, 512}, 3},
-             Case{{256, 256}, {384, 384}, 3},
-             Case{{256, 256}, {256, 256}, 3},
+             Case{{320, 320}, {511, 511}, 4},
+             Case{{320, 320}, {512, 512}, 3},  // a build of four colours: over a minute
+             Case{{256, 256}, {384, 384}, 4},
+             Case{{256, 256}, {256, 256}, 4},
              Case{{192, 192}, {192, 192}, 3},
+             Case{{128, 128}, {255, 200}, 3},
              // Sources under 128 px (pattern files): 4.
              Case{{100, 75}, {100, 75}, 4},
              Case{{128, 128}, {128, 128}, 3},
@@ -1021,7 +1049,7 @@ TEST_CASE("slab scans and cells up to 320 px get three corner colours by default
         INFO("cell " << c.cell << ", source " << c.source);
         CHECK(CellSet::default_corner_colours(c.cell, c.source) == c.colours);
     }
-    // Built by default, a design of the corpus's size has three.
+    // Built by default, a design of the corpus's size has four, one variant each.
     BuildParams defaults;
     CHECK(defaults.corner_colours == 0);
     defaults.cell_size = 96;
@@ -1029,7 +1057,8 @@ TEST_CASE("slab scans and cells up to 320 px get three corner colours by default
         load_exemplar(std::filesystem::path(TILEJET_SOURCE_DIR) / "tests/quality/corpus/gravel.png",
                       {}),
         defaults);
-    CHECK(map.corner_colours == 3);
+    CHECK(map.corner_colours == 4);
+    CHECK(map.cell_images.size() == 256);
     for (const int bad : {-1, 5}) {
         defaults.corner_colours = bad;
         CHECK_THROWS_WITH(

@@ -29,14 +29,18 @@ struct BuildParams {
     // designs one or two cells across correlated at every lag of whole cells (0.04-0.07 on
     // average, 0.016-0.023 with 168 images; eval's periodicity over 8 cells failed on slate
     // and the demo design at 100 dpi), and the bytes that measurement above counted went when
-    // cell images were stored against the source (2 MB for 168 images of 256 px).
+    // cell images were stored against the source (2 MB for 168 images of 256 px). Since
+    // session 42 4 (256 images, one variant, wider strips) where such a source is 256-511 px
+    // (CellSet::default_corner_colours says why and where not).
     int corner_colours = 0;
     // V cell images per combination of corner colours, K^4 V in all (with 2, plain combinations
     // get 4: K^4 2 + 2 K); with 2 a cell shows one by hash, but where a neighbour has its
     // combination the one that parts them (TextureMap::VariantRule): with one,
     // about two cells in five touched a copy of themselves, the motif doubled that the eye and
     // periodicity find first (the 256 px demo design 3.22 times quilting's at map seed 1).
-    // 0: default, 2, but 1 for cells over 320 px of three or more corner colours from a source
+    // 0: default, 2, but 1 for four corner colours of cells up to 320 px from sources of 256 px
+    // or more (session 42: a twin one time in 256), and for cells over 320 px of three or more
+    // corner colours from a source
     // they copy less than once (slab scans over about 5800 px with 640 px cells: an 8192 px slab's
     // texture energy 1.64 times quilting's with two, 1.21 with one, its wall calmer, the stone's
     // contrast lost); with two colours two (a 4096 px slab: one left a twin across one edge in 16).
