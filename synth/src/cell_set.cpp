@@ -253,6 +253,21 @@ bool large_cells(int k, cv::Size cell, cv::Size source) {
     return std::min(cell.width, cell.height) > kLargeCell && reuse >= 1;
 }
 
+// The smallest source a set of `cell` with a frame of `w` can be made from
+// (CellSet::smallest_source says why).
+cv::Size least_source(cv::Size cell, int w) {
+    return {std::max(8, cell.width * 3 / 4) + 2 * w + 2,
+            std::max(8, cell.height * 3 / 4) + 2 * w + 2};
+}
+
+// Cells up to kLargeCell from a source of kSmallSource or more: a design of a few hundred px
+// at its own resolution, one or two cells across (the corpus's), which gets four colours, wider
+// strips and blocks weighing their tone steps.
+bool small_cells_from_design(cv::Size cell, cv::Size source) {
+    return std::min(cell.width, cell.height) <= kLargeCell &&
+           std::min(source.width, source.height) >= CellSet::kSmallSource;
+}
+
 // Strips an eighth of the cell each side instead of a tenth, for sets of four colours or more of
 // cells up to kLargeCell off a lattice, from a source of kSmallSource or more that holds an
 // inside block and the wider frame. The cuts of a cell's blocks into its strips then wander
@@ -267,11 +282,9 @@ bool large_cells(int k, cv::Size cell, cv::Size source) {
 // limestone's texture energy 1.23 and 1.21 (over its gate); a seventh: limestone 1.21.
 constexpr int kWideFrameParts = 8;
 bool wide_frame(int k, cv::Size cell, cv::Size source, bool lattice) {
-    const int w = frame_width(cell, kWideFrameParts);
-    return k >= 4 && !lattice && std::min(cell.width, cell.height) <= kLargeCell &&
-           std::min(source.width, source.height) >= CellSet::kSmallSource &&
-           source.width >= cell.width * 3 / 4 + 2 * w + 2 &&
-           source.height >= cell.height * 3 / 4 + 2 * w + 2;
+    const cv::Size least = least_source(cell, frame_width(cell, kWideFrameParts));
+    return k >= 4 && !lattice && small_cells_from_design(cell, source) &&
+           source.width >= least.width && source.height >= least.height;
 }
 
 }  // namespace
@@ -284,9 +297,7 @@ cv::Size CellSet::smallest_source(cv::Size cell) {
     // a quilt's shards and seams, never the stone: texture energy 1.92-2.07 times quilting's
     // at map seeds 1-4 (coherence 1.64, completeness 1.64 against 0.95 and 0.63 at seed 1).
     // From the exemplar itself, with the smaller inside blocks below: 1.00-1.16.
-    const int w = frame_width(cell);
-    return {std::max(8, cell.width * 3 / 4) + 2 * w + 2,
-            std::max(8, cell.height * 3 / 4) + 2 * w + 2};
+    return least_source(cell, frame_width(cell));
 }
 
 int CellSet::frame_for(int corner_colours, cv::Size cell, cv::Size source, bool lattice) {
@@ -304,9 +315,7 @@ int CellSet::default_corner_colours(cv::Size cell, cv::Size source) {
 
 int CellSet::default_variants(int corner_colours, cv::Size cell, cv::Size source) {
     const int side = std::min(cell.width, cell.height);
-    if (corner_colours >= 4 && side <= kLargeCell &&
-        std::min(source.width, source.height) >= kSmallSource)
-        return 1;
+    if (corner_colours >= 4 && small_cells_from_design(cell, source)) return 1;
     const bool two =
         large_cells(corner_colours, cell, source) || side <= kLargeCell || corner_colours == 2;
     return two ? 2 : 1;
@@ -405,8 +414,8 @@ CellSet::CellSet(const cv::Mat& source_rgb, const cv::Mat& source_lab, const Cel
             (std::max(source_lab.cols, source_lab.rows) + kCoarseSide - 1) / kCoarseSide;
         coarse_lab_ = coarse_source(source_lab, coarse_factor_);
     }
-    if (params.weigh_tone_steps && !params.lattice && side <= kLargeCell &&
-        params.seam_feather == 0 && std::min(source_lab.cols, source_lab.rows) >= kSmallSource)
+    if (params.weigh_tone_steps && !params.lattice && params.seam_feather == 0 &&
+        small_cells_from_design(params.cell, source_lab.size()))
         tone_ = SourceTone(source_lab, std::max(1.0, side / 40.0));
     choose_corner_blocks(z2);
     const size_t kinds = size_t(k_) * size_t(k_);

@@ -348,8 +348,7 @@ MHD_Result HttpServer::on_request(MHD_Connection* c, Exchange& ex, const char* u
             std::lock_guard lock(connections_mutex_);
             ex.connection->waiting_for_lane = false;
         }
-        reply_error(ex.res, 503, "", "the controller is busy; try again");
-        ex.answered = true;
+        refuse_busy(ex);
         MHD_resume_connection(c);
     }
     return MHD_YES;
@@ -363,6 +362,10 @@ void HttpServer::run_queued(Exchange& ex) {
         cut = ex.connection->shut;
     }
     if (!cut) return run_handler(ex);
+    refuse_busy(ex);
+}
+
+void HttpServer::refuse_busy(Exchange& ex) {
     reply_error(ex.res, 503, "", "the controller is busy; try again");
     ex.answered = true;
 }

@@ -74,6 +74,8 @@ class HttpServer {
     MHD_Result answer(MHD_Connection* c, Exchange& ex);
     // A queued request's turn in its lane: its handler, unless its connection was cut meanwhile.
     void run_queued(Exchange& ex);
+    // 503: a lane full, or a queued request cut for a newer connection.
+    static void refuse_busy(Exchange& ex);
     void run_handler(Exchange& ex);
     void housekeep();
     void enforce_deadlines(Clock::time_point now);
