@@ -46,6 +46,18 @@ constexpr double kActivePerCell = 10, kActivePerSetCell = 4;
 // to 1.22-1.26.
 constexpr int kFrameCandidates = 32;
 constexpr double kActiveFramePatches = 8;
+// Designs with a grain (wood; grain_alignment() at least kGrainAlignment) get kGrainFramePatches
+// frame patches per edge unless told otherwise. Across a grain every cut shows, and the cells'
+// cuts into their strips ran along the borders across it: wood's upright bands, lines along the
+// cell grid 1.54 and 1.65 at map seeds 1 and 2 (session 42's defaults), 1.23 and 1.29 with
+// frame patches, texture energy 0.45 -> 0.53 and 0.44 -> 0.60 times quilting's (session 43).
+// The corpus's other designs measure 0.02-0.22 and stay as they were: on fine ones frame
+// patches cost texture energy (limestone over its gate, session 35). Cells up to
+// kGrainFrameCells only: on the demo design's 480 px cells at 360 dpi frame patches made
+// texture energy worse (1.40 -> 1.50) and the build three times as long.
+constexpr double kGrainAlignment = 0.5;
+constexpr int kGrainFramePatches = 4;
+constexpr int kGrainFrameCells = 320;
 // How wide the cuts of an enlarged design are blended (session 37): over the enlargement f, but
 // at most kNarrowSeamFeather px below kWideBlendsFrom. A blend mixes two grains over its width, a
 // faint double image that no part of the design shows: blended over the whole enlargement (7 px
@@ -90,7 +102,8 @@ void check_params(const BuildParams& p, const cv::Mat& exemplar) {
         throw SynthError("--active " + std::to_string(p.active_per_cell) +
                          " must be positive (or 0 for the default)");
     if (p.threads < 0) throw SynthError("--threads must not be negative");
-    if (p.frame_patches < 0 || p.frame_patches > 16)
+    if ((p.frame_patches < 0 && p.frame_patches != BuildParams::kFrameFromGrain) ||
+        p.frame_patches > 16)
         throw SynthError("--frame-patches " + std::to_string(p.frame_patches) +
                          " must be between 0 and 16");
     if (!(p.frame_active >= 0 && p.frame_active <= 64))
@@ -453,7 +466,12 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         // Frame patches off a lattice only: there a cell's courses and grout lines meet its
         // strips where the lattice puts them, and the brick wall was not measured with them.
         // (Smoothed images get none either: CellSet::strip_offset() knows their pixels moved.)
-        const int frame_patches = lattice ? 0 : params.frame_patches;
+        const int frame_patches =
+            lattice                                                ? 0
+            : params.frame_patches != BuildParams::kFrameFromGrain ? params.frame_patches
+            : cell <= kGrainFrameCells && grain_alignment(input) >= kGrainAlignment
+                ? kGrainFramePatches
+                : 0;
         const double frame_active =
             params.frame_active > 0 ? params.frame_active : kActiveFramePatches;
         const int kinds = corner_colours > 0 || lattice

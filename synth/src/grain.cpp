@@ -68,4 +68,19 @@ double grain_size(const cv::Mat& rgb) {
     return reach;
 }
 
+double grain_alignment(const cv::Mat& rgb) {
+    CV_Assert(rgb.type() == CV_8UC3);
+    if (analysis_scale(rgb.size()) > 1) return grain_alignment(analysis_copy(rgb));
+    cv::Mat grey, gx, gy;
+    cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+    grey.convertTo(grey, CV_32F);
+    cv::Sobel(grey, gx, CV_32F, 1, 0);
+    cv::Sobel(grey, gy, CV_32F, 0, 1);
+    const double xx = cv::mean(gx.mul(gx))[0], yy = cv::mean(gy.mul(gy))[0],
+                 xy = cv::mean(gx.mul(gy))[0];
+    const double trace = xx + yy;
+    if (trace < 1e-9) return 0;  // flat: no direction
+    return std::sqrt((xx - yy) * (xx - yy) + 4 * xy * xy) / trace;
+}
+
 }  // namespace tilejet::synth::detail

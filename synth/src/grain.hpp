@@ -30,4 +30,11 @@ double grain_size(const cv::Mat& rgb);
 // two-way lattice, where 128x133 px cells kept its courses).
 int cell_side_for_grain(double grain, bool lattice, int exemplar_side);
 
+// How much of an exemplar's detail runs one way, from 0 (every direction alike) to 1 (every
+// edge parallel): the coherence (l1 - l2) / (l1 + l2) of its structure tensor (the luminance
+// gradient's outer product) averaged over the whole exemplar. On the corpus: wood 0.85 (its
+// grain), the brick wall 0.67 (its courses), every other design 0.02-0.22 (marble's veins
+// 0.21, slate 0.12, terrazzo 0.03). `rgb` CV_8UC3.
+double grain_alignment(const cv::Mat& rgb);
+
 }  // namespace tilejet::synth::detail

@@ -7,6 +7,7 @@
 
 #include "cell_set.hpp"
 #include "fixtures.hpp"
+#include "grain.hpp"
 #include "strip_continuation.hpp"
 #include "tilejet/synth/build.hpp"
 #include "tilejet/synth/exemplar.hpp"
@@ -133,17 +134,19 @@ TEST_CASE("a set with frame patches renders as it samples, through its file",
     CHECK(build_texture_map(corpus_design("marble.png"), p).id == map.id);
 }
 
-TEST_CASE("a set has no frame patches unless asked for, bad counts are refused",
-          "[frame_patches][cell_set]") {
+TEST_CASE(
+    "a set of a design without a grain has no frame patches unless asked for, bad counts "
+    "are refused",
+    "[frame_patches][cell_set]") {
     BuildParams defaults;
-    REQUIRE(defaults.frame_patches == 0);
+    REQUIRE(defaults.frame_patches == BuildParams::kFrameFromGrain);
     for (const CellImage& image : marble_map(defaults.frame_patches).cell_images) {
         CHECK(image.a.patches.empty());
         CHECK(image.b.patches.empty());
     }
     BuildParams p;
     p.cell_size = 96;
-    for (const int bad : {-1, 17}) {
+    for (const int bad : {-2, 17}) {
         p.frame_patches = bad;
         CHECK_THROWS_WITH(build_texture_map(corpus_design("marble.png"), p),
                           Catch::Contains("--frame-patches " + std::to_string(bad)));
@@ -167,4 +170,45 @@ TEST_CASE("smoothed cell images get no frame patches: their frames no longer cop
         CHECK(image.a.patches.empty());
         CHECK(image.b.patches.empty());
     }
+}
+
+TEST_CASE("of the corpus's designs off a lattice only the wood has a grain",
+          "[frame_patches][grain]") {
+    const std::filesystem::path corpus =
+        std::filesystem::path(TILEJET_SOURCE_DIR) / "tests/quality/corpus";
+    for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+        if (entry.path().extension() != ".png") continue;
+        const std::string name = entry.path().filename().string();
+        if (name == "brick-wall.png") continue;  // a lattice: its courses are its grain
+        INFO(name);
+        const double alignment = grain_alignment(load_exemplar(entry.path(), {}));
+        if (name == "wood.png")
+            CHECK(alignment > 0.7);
+        else
+            CHECK(alignment < 0.3);
+    }
+}
+
+TEST_CASE("a set of a design with a grain gets frame patches by default, none when told 0",
+          "[frame_patches][cell_set]") {
+    // Wood's grain breaks at every cell border across it: frame patches move the cells' cuts
+    // off one line there (session 43). 96 px cells: a strip is one window of the source.
+    const auto wood_map = [](int frame_patches) {
+        BuildParams p;
+        p.cell_size = 96;
+        p.corner_colours = 2;
+        p.frame_patches = frame_patches;
+        return build_texture_map(corpus_design("wood.png"), p);
+    };
+    const auto patches_of = [](const TextureMap& map) {
+        size_t n = 0;
+        for (const CellImage& image : map.cell_images)
+            n += image.a.patches.size() + image.b.patches.size();
+        return n;
+    };
+    const TextureMap by_default = wood_map(BuildParams::kFrameFromGrain);
+    const TextureMap asked = wood_map(4);
+    CHECK(patches_of(by_default) > by_default.cell_images.size());
+    CHECK(by_default.id == asked.id);
+    CHECK(patches_of(wood_map(0)) == 0);
 }

@@ -1,6 +1,7 @@
 // The grain of an exemplar (its largest structures), which sizes the cells.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
@@ -54,4 +55,36 @@ TEST_CASE("a slab-scan-sized exemplar's grain is that of a smaller copy, scaled"
     const double g_small = grain_size(small), g_large = grain_size(large);
     INFO("grain " << g_small << " px at 1024, " << g_large << " px at 4096");
     CHECK(g_large == Approx(4 * g_small).epsilon(0.15));
+}
+
+namespace {
+
+// Parallel waves `period` px apart across the direction `angle` (radians), with noise over them:
+// a grain that runs one way.
+cv::Mat waves(int side, double angle, double period, std::uint32_t seed) {
+    cv::Mat out(side, side, CV_8UC3);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0, 12);
+    const double cx = std::cos(angle), cy = std::sin(angle);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const double v =
+                128 + 60 * std::sin(2 * CV_PI * (x * cx + y * cy) / period) + noise(rng);
+            const auto c = cv::saturate_cast<uint8_t>(v);
+            out.at<cv::Vec3b>(y, x) = {c, uint8_t(c * 3 / 4), uint8_t(c / 2)};
+        }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a grain that runs one way is aligned whatever its direction; blobs are not", "[grain]") {
+    for (const double angle : {0.0, CV_PI / 2, CV_PI / 5}) {
+        INFO("waves across " << angle << " rad");
+        CHECK(grain_alignment(waves(256, angle, 9, 1)) > 0.7);
+    }
+    CHECK(grain_alignment(blobs(256, 6, 1)) < 0.2);
+    CHECK(grain_alignment(cv::Mat(64, 64, CV_8UC3, cv::Scalar::all(90))) == 0);
+    // A slab scan's is measured on a smaller copy (analysis_size.hpp), to the same answer.
+    CHECK(grain_alignment(waves(2600, CV_PI / 2, 40, 2)) > 0.7);
 }

@@ -100,11 +100,13 @@ struct BuildParams {
     // from, to a cut of its own (docs/design.md section 9, strip_continuation.hpp). Shown by
     // hash cell by cell, they move the cut along each border to another depth in each cell,
     // where every cell's own cut into its strips runs in one thin band and draws the grid.
-    // 0 (the default): none. With 4 on the corpus (session 35, README) the lines along the
-    // grid fell on grained and veined designs (wood 1.67 -> 1.25) and texture energy rose on
-    // fine ones (limestone 1.10 -> 1.21 times quilting's, over the gate; gravel 0.95 -> 1.11):
-    // a designer's choice per design, not a default.
-    int frame_patches = 0;
+    // With 4 on the corpus (session 35, README) the lines along the grid fell on grained and
+    // veined designs (wood 1.67 -> 1.25) and texture energy rose on fine ones (limestone 1.10
+    // -> 1.21 times quilting's, over the gate; gravel 0.95 -> 1.11). So kFrameFromGrain (the
+    // default): 4 for designs with a grain in cells up to 320 px (build.cpp, kGrainAlignment), none
+    // for the others; 0: none.
+    static constexpr int kFrameFromGrain = -1;
+    int frame_patches = kFrameFromGrain;
     // Expected frame patches shown per cell (of up to 4 edges x frame_patches); 0: default (8).
     double frame_active = 0;
 };
