@@ -78,7 +78,7 @@ cv::Mat waves(int side, double angle, double period, std::uint32_t seed) {
 
 }  // namespace
 
-TEST_CASE("a grain that runs one way is aligned whatever its direction; blobs are not", "[grain]") {
+TEST_CASE("a grain that runs one way is aligned whatever its direction, blobs are not", "[grain]") {
     for (const double angle : {0.0, CV_PI / 2, CV_PI / 5}) {
         INFO("waves across " << angle << " rad");
         CHECK(grain_alignment(waves(256, angle, 9, 1)) > 0.7);
