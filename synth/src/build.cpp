@@ -53,11 +53,10 @@ constexpr double kActiveFramePatches = 8;
 // frame patches, texture energy 0.45 -> 0.53 and 0.44 -> 0.60 times quilting's (session 43).
 // The corpus's other designs measure 0.02-0.22 and stay as they were: on fine ones frame
 // patches cost texture energy (limestone over its gate, session 35). Cells up to
-// kGrainFrameCells only: on the demo design's 480 px cells at 360 dpi frame patches made
+// CellSet::kLargeCell only: on the demo design's 480 px cells at 360 dpi frame patches made
 // texture energy worse (1.40 -> 1.50) and the build three times as long.
 constexpr double kGrainAlignment = 0.5;
 constexpr int kGrainFramePatches = 4;
-constexpr int kGrainFrameCells = 320;
 // How wide the cuts of an enlarged design are blended (session 37): over the enlargement f, but
 // at most kNarrowSeamFeather px below kWideBlendsFrom. A blend mixes two grains over its width, a
 // faint double image that no part of the design shows: blended over the whole enlargement (7 px
@@ -311,6 +310,19 @@ void make_frame_patches(CellImage& image, const CellSet& set, size_t m, const cv
     image.b = make_set(kept, all, active_per_cell);
 }
 
+// Frame patches per edge of a set's images: as asked, or by the exemplar's grain when the
+// default is asked for (kGrainAlignment and beside it). None on a lattice: there a cell's courses
+// and grout lines meet its strips where the lattice puts them, and the brick wall was not
+// measured with them. (Smoothed images get none either: CellSet::strip_offset() knows their
+// pixels moved.)
+int frame_patches_for(const BuildParams& params, bool on_lattice, int cell, const cv::Mat& input) {
+    if (on_lattice) return 0;
+    if (params.frame_patches != BuildParams::kFrameFromGrain) return params.frame_patches;
+    return cell <= CellSet::kLargeCell && grain_alignment(input) >= kGrainAlignment
+               ? kGrainFramePatches
+               : 0;
+}
+
 }  // namespace
 
 TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
@@ -463,15 +475,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         const int variants = params.variants == 0 && lattice && grain > 0 && grain < kFineCourses
                                  ? 1
                                  : params.variants;
-        // Frame patches off a lattice only: there a cell's courses and grout lines meet its
-        // strips where the lattice puts them, and the brick wall was not measured with them.
-        // (Smoothed images get none either: CellSet::strip_offset() knows their pixels moved.)
-        const int frame_patches =
-            lattice                                                ? 0
-            : params.frame_patches != BuildParams::kFrameFromGrain ? params.frame_patches
-            : cell <= kGrainFrameCells && grain_alignment(input) >= kGrainAlignment
-                ? kGrainFramePatches
-                : 0;
+        const int frame_patches = frame_patches_for(params, lattice.has_value(), cell, input);
         const double frame_active =
             params.frame_active > 0 ? params.frame_active : kActiveFramePatches;
         const int kinds = corner_colours > 0 || lattice

@@ -104,7 +104,7 @@ constexpr double kConspicuousCost = 1.0;
 // the cost made things worse (limestone's periodicity 0.36 to 1.28, the 256 px demo design's 0.96
 // to 1.5: strips from its few calm places, alike at every fourth edge), and those designs showed no
 // repeated feature.
-constexpr int kLargeCell = 320;
+constexpr int kLargeCell = CellSet::kLargeCell;
 // Large cells' blocks overlap by this part of a block (a quarter elsewhere): a block of light
 // cloud among darker ones had a quarter of its 480 px to cut round the cloud in, and where the
 // cloud reached into that band the cut ran straight along the band's edge, a square of cloud

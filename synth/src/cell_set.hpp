@@ -120,6 +120,9 @@ class CellSet {
     // cells) 66 s to build, over issue 16's minute (three: 37 s).
     static int default_corner_colours(cv::Size cell, cv::Size source);
     static constexpr int kSmallSource = 256;
+    // Cells over this many px are "large" (cell_set.cpp says what changes for them; build.cpp
+    // gives frame patches to grained designs up to it).
+    static constexpr int kLargeCell = 320;
     // Variants per combination by default (CellSetParams::variants 0) for K `corner_colours`:
     // 2, but 1 for cells over kLargeCell of three or more colours from a source their set
     // copies less than once (the constructor says why), and 1 for four colours or more of cells
