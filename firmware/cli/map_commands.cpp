@@ -198,12 +198,13 @@ void add_map_commands(CLI::App& app) {
                 "(texture energy rises; README, session 34)");
     b->add_option(
          "--frame-patches", build->params.frame_patches,
-         "in a set off a lattice, frame patches kept per edge of each cell image: the "
+         "in a set off a lattice, frame patches kept per edge of each cell image (on a "
+         "grained design, the edges across its grain only): the "
          "edge's strip continued into the cell to a cut of its own, shown by hash, so "
          "the cut along each border lies at another depth in each cell: fewer lines "
          "along the cell grid on grained designs, more texture energy on fine ones "
          "(default 4 on designs with a grain, such as wood, in cells up to 320 px, else 0, none; "
-         "README, sessions 35 and 43)")
+         "README, sessions 35, 43 and 44)")
         ->check(CLI::Range(0, 16));
     b->add_option("--frame-active", build->params.frame_active,
                   "expected frame patches shown per cell (default 8)")

@@ -54,7 +54,8 @@ constexpr double kActiveFramePatches = 8;
 // The corpus's other designs measure 0.02-0.22 and stay as they were: on fine ones frame
 // patches cost texture energy (limestone over its gate, session 35). Cells up to
 // CellSet::kLargeCell only: on the demo design's 480 px cells at 360 dpi frame patches made
-// texture energy worse (1.40 -> 1.50) and the build three times as long.
+// texture energy worse (1.40 -> 1.50) and the build three times as long. On the edges across
+// the grain only (edges_across(), session 44): lines 1.19 and 1.23, builds a quarter shorter.
 constexpr double kGrainAlignment = 0.5;
 constexpr int kGrainFramePatches = 4;
 // How wide the cuts of an enlarged design are blended (session 37): over the enlargement f, but
@@ -278,15 +279,22 @@ void make_patch_sets(CellImage& image, const CandidateSpace& space, const BuildP
     image.b = make_set(kept, split.b, active_per_cell);
 }
 
-// A set image's frame patches (strip_continuation.hpp): along each edge whose strip continues
-// in the source, the `per_edge` best of kFrameCandidates by their seams, in both the image's A
-// and its B set: they lie inside the cell, where no neighbour's patch can meet them.
+// Where a set's images get frame patches, and how many per edge.
+struct FramePlan {
+    int per_edge = 0;
+    std::vector<CellEdge> edges;
+};
+
+// A set image's frame patches (strip_continuation.hpp): along each of the plan's edges whose
+// strip continues in the source, the `per_edge` best of kFrameCandidates by their seams, in
+// both the image's A and its B set: they lie inside the cell, where no neighbour's patch can
+// meet them.
 void make_frame_patches(CellImage& image, const CellSet& set, size_t m, const cv::Mat& source_lab,
-                        CutLevels cuts, int per_edge, double active_per_cell, uint64_t seed,
-                        int threads) {
+                        CutLevels cuts, const FramePlan& plan, double active_per_cell,
+                        uint64_t seed, int threads) {
     const cv::Mat image_lab = to_lab(image.pixels);
     std::vector<Patch> kept;
-    for (const CellEdge edge : {CellEdge::top, CellEdge::bottom, CellEdge::left, CellEdge::right}) {
+    for (const CellEdge edge : plan.edges) {
         const std::optional<cv::Point> offset = set.strip_offset(m, edge);
         if (!offset) continue;
         const ContinuationSpace space{image_lab, source_lab, edge, *offset, set.frame(), cuts};
@@ -300,7 +308,7 @@ void make_frame_patches(CellImage& image, const CellSet& set, size_t m, const cv
             if (f) along.push_back(std::move(*f));
         std::stable_sort(along.begin(), along.end(),
                          [](const Patch& a, const Patch& b) { return a.seam_cost < b.seam_cost; });
-        along.resize(std::min(along.size(), size_t(per_edge)));
+        along.resize(std::min(along.size(), size_t(plan.per_edge)));
         std::ranges::move(along, std::back_inserter(kept));
     }
     if (kept.empty()) return;
@@ -310,17 +318,36 @@ void make_frame_patches(CellImage& image, const CellSet& set, size_t m, const cv
     image.b = make_set(kept, all, active_per_cell);
 }
 
-// Frame patches per edge of a set's images: as asked, or by the exemplar's grain when the
-// default is asked for (kGrainAlignment and beside it). None on a lattice: there a cell's courses
-// and grout lines meet its strips where the lattice puts them, and the brick wall was not
-// measured with them. (Smoothed images get none either: CellSet::strip_offset() knows their
-// pixels moved.)
-int frame_patches_for(const BuildParams& params, bool on_lattice, int cell, const cv::Mat& input) {
-    if (on_lattice) return 0;
-    if (params.frame_patches != BuildParams::kFrameFromGrain) return params.frame_patches;
-    return cell <= CellSet::kLargeCell && grain_alignment(input) >= kGrainAlignment
-               ? kGrainFramePatches
-               : 0;
+// The edges whose cuts cross an exemplar's grain: a cut along a grain hides among its lines,
+// one across it shows. Wood's planks run along the rows: frame patches on the upright edges
+// only took its lines along the cell grid from 1.23 and 1.29 (all four edges) to 1.19 and 1.23
+// at map seeds 1 and 2, and its build from 80 to 58 s; on the rows' edges only, 1.63
+// (session 44). A grain within kAcrossWithin degrees of the rows or the columns gets the two
+// edges across it, any other (or none) all four.
+std::vector<CellEdge> edges_across(const GrainDirection& grain) {
+    constexpr double kAcrossWithin = 30;
+    if (grain.alignment >= kGrainAlignment) {
+        if (grain.degrees < kAcrossWithin || grain.degrees > 180 - kAcrossWithin)
+            return {CellEdge::left, CellEdge::right};
+        if (std::abs(grain.degrees - 90) < kAcrossWithin) return {CellEdge::top, CellEdge::bottom};
+    }
+    return {CellEdge::top, CellEdge::bottom, CellEdge::left, CellEdge::right};
+}
+
+// A set's frame patches: as many as asked for, or by the exemplar's grain when the default is
+// asked for (kGrainAlignment and beside it), on the edges across its grain. None on a lattice:
+// there a cell's courses and grout lines meet its strips where the lattice puts them, and the
+// brick wall was not measured with them. (Smoothed images get none either:
+// CellSet::strip_offset() knows their pixels moved.)
+FramePlan frame_plan_for(const BuildParams& params, bool on_lattice, int cell,
+                         const cv::Mat& input) {
+    if (on_lattice || params.frame_patches == 0) return {};
+    const GrainDirection grain = grain_direction(input);
+    if (params.frame_patches != BuildParams::kFrameFromGrain)
+        return {params.frame_patches, edges_across(grain)};
+    if (cell <= CellSet::kLargeCell && grain.alignment >= kGrainAlignment)
+        return {kGrainFramePatches, edges_across(grain)};
+    return {};
 }
 
 }  // namespace
@@ -475,7 +502,7 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
         const int variants = params.variants == 0 && lattice && grain > 0 && grain < kFineCourses
                                  ? 1
                                  : params.variants;
-        const int frame_patches = frame_patches_for(params, lattice.has_value(), cell, input);
+        const FramePlan frame_plan = frame_plan_for(params, lattice.has_value(), cell, input);
         const double frame_active =
             params.frame_active > 0 ? params.frame_active : kActiveFramePatches;
         const int kinds = corner_colours > 0 || lattice
@@ -510,8 +537,8 @@ TextureMap build_texture_map(const cv::Mat& input, const BuildParams& params,
             CellImage image;
             image.pixels = set.image(m).clone();
             if (patches == 0) {  // no candidate patches: the image alone, or its frame patches
-                if (frame_patches > 0)
-                    make_frame_patches(image, set, m, source_lab, cuts, frame_patches, frame_active,
+                if (frame_plan.per_edge > 0)
+                    make_frame_patches(image, set, m, source_lab, cuts, frame_plan, frame_active,
                                        hash_combine(params.seed, m), threads);
                 map.cell_images.push_back(std::move(image));
                 continue;

@@ -68,9 +68,9 @@ double grain_size(const cv::Mat& rgb) {
     return reach;
 }
 
-double grain_alignment(const cv::Mat& rgb) {
+GrainDirection grain_direction(const cv::Mat& rgb) {
     CV_Assert(rgb.type() == CV_8UC3);
-    if (analysis_scale(rgb.size()) > 1) return grain_alignment(analysis_copy(rgb));
+    if (analysis_scale(rgb.size()) > 1) return grain_direction(analysis_copy(rgb));
     cv::Mat grey, gx, gy;
     cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
     grey.convertTo(grey, CV_32F);
@@ -79,8 +79,15 @@ double grain_alignment(const cv::Mat& rgb) {
     const double xx = cv::mean(gx.mul(gx))[0], yy = cv::mean(gy.mul(gy))[0],
                  xy = cv::mean(gx.mul(gy))[0];
     const double trace = xx + yy;
-    if (trace < 1e-9) return 0;  // flat: no direction
-    return std::sqrt((xx - yy) * (xx - yy) + 4 * xy * xy) / trace;
+    if (trace < 1e-9) return {};  // flat: no direction
+    // The tensor's main axis is the gradients' way; the grain's edges run square to it.
+    const double gradient = 0.5 * std::atan2(2 * xy, xx - yy) * 180 / std::numbers::pi;
+    return {std::sqrt((xx - yy) * (xx - yy) + 4 * xy * xy) / trace,
+            std::fmod(gradient + 90 + 360, 180.0)};
+}
+
+double grain_alignment(const cv::Mat& rgb) {
+    return grain_direction(rgb).alignment;
 }
 
 }  // namespace tilejet::synth::detail

@@ -37,4 +37,12 @@ int cell_side_for_grain(double grain, bool lattice, int exemplar_side);
 // 0.21, slate 0.12, terrazzo 0.03). `rgb` CV_8UC3.
 double grain_alignment(const cv::Mat& rgb);
 
+// Which way that grain runs: its alignment (above) and the direction of its edges, in degrees
+// from the horizontal (image rows), in [0, 180): the wood's planks 0, upright courses 90.
+struct GrainDirection {
+    double alignment = 0;
+    double degrees = 0;
+};
+GrainDirection grain_direction(const cv::Mat& rgb);
+
 }  // namespace tilejet::synth::detail

@@ -182,17 +182,21 @@ TEST_CASE("of the corpus's designs off a lattice only the wood has a grain",
         if (name == "brick-wall.png") continue;  // a lattice: its courses are its grain
         INFO(name);
         const double alignment = grain_alignment(load_exemplar(entry.path(), {}));
-        if (name == "wood.png")
+        if (name == "wood.png") {
             CHECK(alignment > 0.7);
-        else
+            const double degrees = grain_direction(load_exemplar(entry.path(), {})).degrees;
+            CHECK((degrees < 20 || degrees > 160));  // its planks run along the rows
+        } else
             CHECK(alignment < 0.3);
     }
 }
 
-TEST_CASE("a set of a design with a grain gets frame patches by default, none when told 0",
-          "[frame_patches][cell_set]") {
+TEST_CASE(
+    "a set of a design with a grain gets frame patches by default on the edges across it, none "
+    "when told 0",
+    "[frame_patches][cell_set]") {
     // Wood's grain breaks at every cell border across it: frame patches move the cells' cuts
-    // off one line there (session 43). 96 px cells: a strip is one window of the source.
+    // off one line there (sessions 43 and 44). 96 px cells: a strip is one window of the source.
     const auto wood_map = [](int frame_patches) {
         BuildParams p;
         p.cell_size = 96;
@@ -210,5 +214,13 @@ TEST_CASE("a set of a design with a grain gets frame patches by default, none wh
     const TextureMap asked = wood_map(4);
     CHECK(patches_of(by_default) > by_default.cell_images.size());
     CHECK(by_default.id == asked.id);
+    // Its planks run along the rows: patches on the upright edges only, each running along its
+    // edge (at least half of it) further than it reaches in (at most a quarter of the cell).
+    size_t upright = 0, lying = 0;
+    for (const CellImage& image : by_default.cell_images)
+        for (const Patch& patch : image.a.patches)
+            ++(patch.height > patch.width ? upright : lying);
+    CHECK(upright > 0);
+    CHECK(lying == 0);
     CHECK(patches_of(wood_map(0)) == 0);
 }

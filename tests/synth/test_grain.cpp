@@ -88,3 +88,20 @@ TEST_CASE("a grain that runs one way is aligned whatever its direction, blobs ar
     // A slab scan's is measured on a smaller copy (analysis_size.hpp), to the same answer.
     CHECK(grain_alignment(waves(2600, CV_PI / 2, 40, 2)) > 0.7);
 }
+
+// Frame patches go on the cell edges across a grain (build.cpp): its direction must come out
+// square to the waves' gradient whichever way they run.
+TEST_CASE("a grain's direction runs square to the way its waves vary", "[grain]") {
+    const auto diff = [](double a, double b) {  // between directions, modulo 180 degrees
+        const double d = std::fmod(std::abs(a - b), 180.0);
+        return std::min(d, 180 - d);
+    };
+    for (const double across : {0.0, 36.0, 90.0, 150.0}) {
+        const GrainDirection grain = grain_direction(waves(256, across * CV_PI / 180, 9, 3));
+        INFO("waves varying along " << across << " degrees: grain at " << grain.degrees);
+        CHECK(grain.alignment > 0.7);
+        CHECK(grain.degrees >= 0);
+        CHECK(grain.degrees < 180);
+        CHECK(diff(grain.degrees, across + 90) < 3);
+    }
+}

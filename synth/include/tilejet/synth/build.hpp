@@ -104,7 +104,8 @@ struct BuildParams {
     // veined designs (wood 1.67 -> 1.25) and texture energy rose on fine ones (limestone 1.10
     // -> 1.21 times quilting's, over the gate; gravel 0.95 -> 1.11). So kFrameFromGrain (the
     // default): 4 for designs with a grain in cells up to 320 px (build.cpp, kGrainAlignment), none
-    // for the others; 0: none.
+    // for the others; 0: none. On a design whose grain runs along the rows or the columns, on
+    // the two edges across it only (build.cpp, edges_across()).
     static constexpr int kFrameFromGrain = -1;
     int frame_patches = kFrameFromGrain;
     // Expected frame patches shown per cell (of up to 4 edges x frame_patches); 0: default (8).
